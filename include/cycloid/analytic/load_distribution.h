@@ -1,0 +1,107 @@
+#ifndef cycloid_analytic_load_distribution_h
+#define cycloid_analytic_load_distribution_h
+
+#include <cycloid/analytic/pair_stiffness.h>
+#include <cycloid/geometry/cycloid_geometry.h>
+
+#include <vector>
+
+namespace cycloid
+{
+  namespace analytic
+  {
+    /**
+     * @brief One pin-disc pair in a solved load state.
+     */
+    struct PinLoad
+    {
+      /** Unloaded contact geometry. */
+      geometry::PinContact contact;
+      /** Geometry seen by the pair model. */
+      PairGeometry pair;
+      /** Approach beta * arm - clearance, clipped at 0 [mm]. */
+      double approach = 0;
+      /** Normal force of the pin on the disc [N]. */
+      double force = 0;
+      /** Pair stiffness dF/d approach [N/mm]. */
+      double stiffness = 0;
+    };
+
+    /**
+     * @brief A solved load state of the analytical model.
+     */
+    struct LoadState
+    {
+      /** Target output torque [N m]. */
+      double torque = 0;
+      /** Rotation beta of the discs from the kinematic position [rad]. */
+      double rotation = 0;
+      /** Rigid take-up rotation that closes the smallest clearance on the
+       * loaded side (lost motion) [rad]. */
+      double takeup = 0;
+      /** Reaction torque sum F * arm [N m] (equals torque at
+       * convergence). */
+      double reaction_torque = 0;
+      /** Tangent stiffness dT/dbeta = sum k l^2 [N m/rad]. */
+      double k_tangent = 0;
+      /** Number of pins carrying force (over all discs). */
+      unsigned int pins_in_contact = 0;
+      /** Iterations of the torque-balance solve. */
+      unsigned int iterations = 0;
+      /** Every pin of every disc. */
+      std::vector<PinLoad> pins;
+
+      /** Secant stiffness T / beta [N m/rad]. */
+      double
+      k_secant() const;
+      /** Secant stiffness after the take-up, T / (beta - takeup)
+       * [N m/rad]. */
+      double
+      k_secant_elastic() const;
+    };
+
+    /**
+     * @brief Load distribution over the pins of one or two discs that share
+     * one rotation beta (they drive one output carrier): find beta such
+     * that the pins whose approach beta * l_i exceeds their clearance carry
+     * F_i = F(beta l_i - c_i) and sum_i F_i l_i = T.
+     *
+     * The torque sum_i F_i(beta l_i - c_i) l_i is continuous and
+     * non-decreasing in beta, so a bracket from the take-up rotation plus a
+     * safeguarded Newton iteration (slope sum k_i l_i^2) converges for any
+     * pair model with non-decreasing F.
+     */
+    class LoadDistribution
+    {
+    public:
+      /** Keeps a reference to @p model. */
+      LoadDistribution(const PairStiffnessModel &model,
+                       const double              relative_tolerance,
+                       const unsigned int        max_iterations);
+
+      /**
+       * Solve for output torque @p torque [N m] given the unloaded pin
+       * geometry @p pins (their `pair` set) and a warm-start guess of beta
+       * (0: none). Throws with a clear message if it does not converge.
+       */
+      LoadState
+      solve(const std::vector<PinLoad> &pins,
+            const double                torque,
+            const double                beta_guess = 0.) const;
+
+    private:
+      /** Torque [N mm] and slope [N mm/rad] at rotation beta, filling the
+       * per-pin state. */
+      double
+      torque_at(const double           beta,
+                std::vector<PinLoad> &pins,
+                double &               slope) const;
+
+      const PairStiffnessModel &model;
+      const double              tolerance;
+      const unsigned int        max_iterations;
+    };
+  } // namespace analytic
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,79 @@
+#ifndef cycloid_analytic_stage_model_h
+#define cycloid_analytic_stage_model_h
+
+#include <cycloid/analytic/load_distribution.h>
+#include <cycloid/analytic/pair_stiffness.h>
+#include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/parameters/all_parameters.h>
+
+#include <memory>
+#include <vector>
+
+namespace cycloid
+{
+  namespace analytic
+  {
+    /**
+     * @brief The analytical model of the whole stage: exact clearances and
+     * arms from the geometry, a pair-stiffness model chosen by name, and
+     * the load distribution over the pins of one or two discs sharing one
+     * rotation.
+     */
+    class StageModel
+    {
+    public:
+      /** Builds the geometry (validating it) and the pair model. */
+      explicit StageModel(const parameters::AllParameters &parameters);
+
+      /** The geometry. */
+      const geometry::CycloidGeometry &
+      geometry() const
+      {
+        return geo;
+      }
+
+      /** The pair-stiffness model. */
+      const PairStiffnessModel &
+      pair_model() const
+      {
+        return *model;
+      }
+
+      /**
+       * Unloaded pin geometry of every disc at crank angle @p psi [rad].
+       * Throws if a clearance is negative (the scene cannot start from an
+       * overlap).
+       */
+      std::vector<PinLoad>
+      unloaded_pins(const double psi) const;
+
+      /** Solve the load distribution at crank angle @p psi [rad] for
+       * torque @p torque [N m], warm-started from @p beta_guess [rad]. */
+      LoadState
+      solve(const double psi, const double torque, const double beta_guess) const;
+
+      /** Solve the load distribution over already computed unloaded pins
+       * (see unloaded_pins()). */
+      LoadState
+      solve(const std::vector<PinLoad> &pins,
+            const double                torque,
+            const double                beta_guess) const
+      {
+        return distribution.solve(pins, torque, beta_guess);
+      }
+
+      /** Distance from a disc-frame point to the load-introduction
+       * surface (nearest crank hole, or the bore) [mm]. */
+      double
+      disc_depth(const dealii::Point<2> &p_disc) const;
+
+    private:
+      const parameters::AllParameters     prm;
+      const geometry::CycloidGeometry     geo;
+      std::unique_ptr<PairStiffnessModel> model;
+      LoadDistribution                    distribution;
+    };
+  } // namespace analytic
+} // namespace cycloid
+
+#endif

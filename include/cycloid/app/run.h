@@ -1,0 +1,27 @@
+#ifndef cycloid_app_run_h
+#define cycloid_app_run_h
+
+#include <cycloid/parameters/all_parameters.h>
+
+#include <mpi.h>
+
+namespace cycloid
+{
+  namespace app
+  {
+    /** Run the mode selected by `Run` in @p parameters on @p comm. */
+    void
+    run(const parameters::AllParameters &parameters, const MPI_Comm comm);
+
+    /**
+     * `Run = analytic`: the analytical model over every crank angle of
+     * `Loading` and every torque; writes stiffness.csv and pin_forces.csv
+     * (rank 0 computes and writes, other ranks return at once).
+     */
+    void
+    run_analytic(const parameters::AllParameters &parameters,
+                 const MPI_Comm                   comm);
+  } // namespace app
+} // namespace cycloid
+
+#endif

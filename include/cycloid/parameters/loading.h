@@ -1,0 +1,45 @@
+#ifndef cycloid_parameters_loading_h
+#define cycloid_parameters_loading_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <vector>
+
+namespace cycloid
+{
+  namespace parameters
+  {
+    /**
+     * @brief Load states to solve (subsection `Loading`): one or several
+     * output torques at one crank angle, or at `Number of phases` crank
+     * angles spread over one mesh period 360/zp degrees (both ends
+     * included, so the first and last phase are one period apart).
+     */
+    struct LoadingParameters
+    {
+      /** Output torques of the whole stage [N m], solved in this order. */
+      std::vector<double> torques{1000.};
+      /** Crank angle of a single state, and start of a phase sweep
+       * [degrees]. */
+      double crank_angle_deg = 0.;
+      /** Number of crank angles over one mesh period (1: only
+       * `Crank angle`). */
+      unsigned int n_phases = 1;
+
+      /** Declare subsection `Loading`. */
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Read subsection `Loading`. */
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+
+      /** The crank angles [rad] of the states, given the mesh period
+       * 2 pi / zp. */
+      std::vector<double>
+      crank_angles(const double mesh_period) const;
+    };
+  } // namespace parameters
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,45 @@
+#ifndef cycloid_parameters_run_h
+#define cycloid_parameters_run_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace cycloid
+{
+  namespace parameters
+  {
+    /**
+     * @brief Top-level entries: the run mode and the output directory.
+     */
+    struct RunParameters
+    {
+      /** The run modes of the executable. */
+      enum class Mode
+      {
+        analytic,
+        mesh,
+        quasi_static,
+        phase_sweep,
+        transient
+      };
+
+      /** Selected run mode. */
+      Mode mode = Mode::analytic;
+      /** Name of the run mode as written in the parameter file. */
+      std::string mode_name = "analytic";
+      /** Output directory (created if missing). */
+      std::string output_directory = "output";
+
+      /** Declare the top-level entries. */
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Read the top-level entries. */
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+  } // namespace parameters
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,94 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/numbers.h>
+
+#include <cycloid/analytic/stage_model.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace cycloid
+{
+  namespace analytic
+  {
+    StageModel::StageModel(const parameters::AllParameters &parameters)
+      : prm(parameters)
+      , geo(parameters.geometry)
+      , model(PairStiffnessModel::create(parameters.analytic,
+                                         parameters.material,
+                                         parameters.scene,
+                                         parameters.geometry.tooth_width))
+      , distribution(*model,
+                     parameters.analytic.tolerance,
+                     parameters.analytic.max_iterations)
+    {}
+
+
+
+    double
+    StageModel::disc_depth(const dealii::Point<2> &p) const
+    {
+      const auto &g = prm.geometry;
+      if (prm.scene.load_introduction ==
+            parameters::SceneParameters::LoadIntroduction::crank_holes &&
+          g.n_crank_holes > 0)
+        {
+          double depth = std::numeric_limits<double>::max();
+          for (unsigned int k = 0; k < g.n_crank_holes; ++k)
+            {
+              const double          a = 2. * dealii::numbers::PI * k /
+                                 g.n_crank_holes;
+              const dealii::Point<2> centre(g.crank_hole_circle_radius *
+                                              std::cos(a),
+                                            g.crank_hole_circle_radius *
+                                              std::sin(a));
+              depth = std::min(depth,
+                               p.distance(centre) - g.crank_hole_radius);
+            }
+          return depth;
+        }
+      return p.norm() - g.bore_radius;
+    }
+
+
+
+    std::vector<PinLoad>
+    StageModel::unloaded_pins(const double psi) const
+    {
+      std::vector<PinLoad> pins;
+      for (unsigned int d = 0; d < prm.scene.n_discs; ++d)
+        for (const geometry::PinContact &c : geo.pin_contacts(d, psi))
+          {
+            if (c.clearance < -1e-7)
+              {
+                std::ostringstream msg;
+                msg << "pin " << c.pin << " overlaps disc " << d
+                    << " by " << -c.clearance * 1e3 << " um at crank angle "
+                    << psi * 180. / dealii::numbers::PI
+                    << " deg: the scene cannot start from a negative "
+                       "clearance.";
+                AssertThrow(false, dealii::ExcMessage(msg.str()));
+              }
+            PinLoad p;
+            p.contact                       = c;
+            p.pair.phase                    = c.phase;
+            p.pair.profile_curvature_radius = c.curvature_radius;
+            p.pair.pin_radius               = prm.geometry.pin_radius;
+            p.pair.disc_depth =
+              disc_depth(geo.to_disc(d, psi, c.contact_point));
+            pins.push_back(p);
+          }
+      return pins;
+    }
+
+
+
+    LoadState
+    StageModel::solve(const double psi,
+                      const double torque,
+                      const double beta_guess) const
+    {
+      return distribution.solve(unloaded_pins(psi), torque, beta_guess);
+    }
+  } // namespace analytic
+} // namespace cycloid

@@ -1,0 +1,300 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/numbers.h>
+#include <deal.II/base/utilities.h>
+
+#include <cycloid/parameters/all_parameters.h>
+
+#include <cmath>
+#include <fstream>
+
+namespace cycloid
+{
+  namespace parameters
+  {
+    namespace
+    {
+      void
+      declare_material(dealii::ParameterHandler &prm,
+                       const std::string &       body,
+                       const ElasticMaterial &   defaults)
+      {
+        using dealii::Patterns::Double;
+        prm.declare_entry(body + " Young's modulus",
+                          dealii::Utilities::to_string(defaults.youngs_modulus),
+                          Double(0),
+                          "Young's modulus of the " + body + " [MPa].");
+        prm.declare_entry(body + " Poisson's ratio",
+                          dealii::Utilities::to_string(defaults.poissons_ratio),
+                          Double(-1, 0.5),
+                          "Poisson's ratio of the " + body +
+                            " [-], in (-1, 0.5).");
+        prm.declare_entry(body + " density",
+                          dealii::Utilities::to_string(defaults.density),
+                          Double(0),
+                          "Density of the " + body + " [kg/m^3].");
+      }
+
+      ElasticMaterial
+      parse_material(dealii::ParameterHandler &prm, const std::string &body)
+      {
+        ElasticMaterial m;
+        m.youngs_modulus = prm.get_double(body + " Young's modulus");
+        m.poissons_ratio = prm.get_double(body + " Poisson's ratio");
+        m.density        = prm.get_double(body + " density");
+        AssertThrow(m.youngs_modulus > 0,
+                    dealii::ExcMessage("Material/" + body +
+                                       " Young's modulus must be positive."));
+        AssertThrow(m.poissons_ratio > -1 && m.poissons_ratio < 0.5,
+                    dealii::ExcMessage("Material/" + body +
+                                       " Poisson's ratio must lie in "
+                                       "(-1, 0.5), got " +
+                                       std::to_string(m.poissons_ratio) +
+                                       "."));
+        AssertThrow(m.density > 0,
+                    dealii::ExcMessage("Material/" + body +
+                                       " density must be positive."));
+        return m;
+      }
+    } // namespace
+
+
+
+    void
+    MaterialParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      const MaterialParameters defaults;
+      prm.enter_subsection("Material");
+      declare_material(prm, "Disc", defaults.disc);
+      declare_material(prm, "Pin", defaults.pin);
+      declare_material(prm, "Housing", defaults.housing);
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    MaterialParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Material");
+      disc    = parse_material(prm, "Disc");
+      pin     = parse_material(prm, "Pin");
+      housing = parse_material(prm, "Housing");
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    LoadingParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii::Patterns;
+      prm.enter_subsection("Loading");
+      {
+        prm.declare_entry("Torque",
+                          "1000",
+                          List(Double(-1e9, 1e9), 1),
+                          "Output torque of the whole stage [N m]; a "
+                          "comma-separated list is a torque sweep, solved in "
+                          "the given order at every crank angle.");
+        prm.declare_entry("Crank angle",
+                          "0",
+                          Double(-3600, 3600),
+                          "Crank angle psi of a single state, and the first "
+                          "angle of a phase sweep [degrees].");
+        prm.declare_entry("Number of phases",
+                          "1",
+                          Integer(1, 100000),
+                          "Number of crank angles of a phase sweep over one "
+                          "mesh period 360/zp degrees, both ends included "
+                          "[-]; 1 solves only at Crank angle.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    LoadingParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Loading");
+      {
+        torques = dealii::Utilities::string_to_double(
+          dealii::Utilities::split_string_list(prm.get("Torque")));
+        crank_angle_deg = prm.get_double("Crank angle");
+        n_phases        = prm.get_integer("Number of phases");
+      }
+      prm.leave_subsection();
+      AssertThrow(!torques.empty(),
+                  dealii::ExcMessage("Loading/Torque: give at least one "
+                                     "torque."));
+    }
+
+
+
+    std::vector<double>
+    LoadingParameters::crank_angles(const double mesh_period) const
+    {
+      const double        psi0 = crank_angle_deg * dealii::numbers::PI / 180.;
+      std::vector<double> angles;
+      if (n_phases == 1)
+        return {psi0};
+      for (unsigned int k = 0; k < n_phases; ++k)
+        angles.push_back(psi0 + mesh_period * k / (n_phases - 1));
+      return angles;
+    }
+
+
+
+    void
+    SceneParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii::Patterns;
+      prm.enter_subsection("Scene");
+      {
+        prm.declare_entry("Dimension",
+                          "2",
+                          Integer(2, 3),
+                          "Spatial dimension of an FE scene: 2 (plane strain, "
+                          "results scaled to the tooth width) or 3.");
+        prm.declare_entry("Number of discs",
+                          "2",
+                          Integer(1, 2),
+                          "Number of cycloid discs: 2 (the RV stage, discs "
+                          "half a turn apart) or 1.");
+        prm.declare_entry("Pins",
+                          "elastic",
+                          Selection("elastic|rigid"),
+                          "Pin model: elastic bodies or rigid cylinders.");
+        prm.declare_entry("Pin support",
+                          "axis",
+                          Selection("axis|housing"),
+                          "What holds the pins: 'axis' (a rigid core of "
+                          "radius Pin core radius around each pin axis is "
+                          "held fixed) or 'housing' (pins seated in the "
+                          "housing grooves).");
+        prm.declare_entry("Pin core radius",
+                          "0.5",
+                          Double(0),
+                          "Radius of the rigid core held fixed around each "
+                          "pin axis for Pin support = axis [mm].");
+        prm.declare_entry("Load introduction",
+                          "crank holes",
+                          Selection("bore|crank holes"),
+                          "Disc surfaces that turn rigidly by the load "
+                          "rotation beta about the disc centre.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    SceneParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Scene");
+      {
+        dimension   = prm.get_integer("Dimension");
+        n_discs     = prm.get_integer("Number of discs");
+        pins        = prm.get("Pins") == "rigid" ? PinModel::rigid :
+                                                    PinModel::elastic;
+        pin_support = prm.get("Pin support") == "housing" ?
+                        PinSupport::housing :
+                        PinSupport::axis;
+        pin_core_radius   = prm.get_double("Pin core radius");
+        load_introduction = prm.get("Load introduction") == "bore" ?
+                              LoadIntroduction::bore :
+                              LoadIntroduction::crank_holes;
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    RunParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii::Patterns;
+      prm.declare_entry(
+        "Run",
+        "analytic",
+        Selection("analytic|mesh|quasi-static|phase-sweep|transient"),
+        "Run mode: 'analytic' (Hertz-based load distribution, "
+        "Analytic subsection), 'mesh' (write the FE mesh), 'quasi-static' "
+        "(FE contact at Crank angle), 'phase-sweep' (FE over Number of "
+        "phases), 'transient' (elastodynamics with contact).");
+      prm.declare_entry("Output directory",
+                        "output",
+                        Anything(),
+                        "Directory for the results (created if missing).");
+    }
+
+
+
+    void
+    RunParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      mode_name        = prm.get("Run");
+      output_directory = prm.get("Output directory");
+      AssertThrow(!output_directory.empty(),
+                  dealii::ExcMessage("Output directory must not be empty."));
+      if (mode_name == "analytic")
+        mode = Mode::analytic;
+      else if (mode_name == "mesh")
+        mode = Mode::mesh;
+      else if (mode_name == "quasi-static")
+        mode = Mode::quasi_static;
+      else if (mode_name == "phase-sweep")
+        mode = Mode::phase_sweep;
+      else
+        mode = Mode::transient;
+    }
+
+
+
+    void
+    AllParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      RunParameters::declare_parameters(prm);
+      geometry::GeometryParameters::declare_parameters(prm);
+      MaterialParameters::declare_parameters(prm);
+      LoadingParameters::declare_parameters(prm);
+      SceneParameters::declare_parameters(prm);
+      analytic::AnalyticParameters::declare_parameters(prm);
+    }
+
+
+
+    void
+    AllParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      run.parse_parameters(prm);
+      geometry.parse_parameters(prm);
+      material.parse_parameters(prm);
+      loading.parse_parameters(prm);
+      scene.parse_parameters(prm);
+      analytic.parse_parameters(prm);
+      AssertThrow(scene.pin_core_radius < geometry.pin_radius,
+                  dealii::ExcMessage("Scene/Pin core radius must be smaller "
+                                     "than Geometry/Pin radius."));
+    }
+
+
+
+    AllParameters
+    AllParameters::read(const std::string &filename)
+    {
+      {
+        std::ifstream in(filename);
+        AssertThrow(in.good(),
+                    dealii::ExcMessage("cannot open the parameter file '" +
+                                       filename + "'."));
+      }
+      dealii::ParameterHandler prm;
+      declare_parameters(prm);
+      prm.parse_input(filename);
+      AllParameters result;
+      result.parse_parameters(prm);
+      return result;
+    }
+  } // namespace parameters
+} // namespace cycloid

@@ -1,0 +1,274 @@
+// Tests of the cycloid geometry: conjugacy of the standard profile (zero
+// gap found by a real closest-point search), periodicity in the crank angle,
+// the clearance ranges of the two modification examples of design.md, the
+// law of gearing (normals through the pitch point) and curvature closed
+// forms.
+
+#include <deal.II/base/numbers.h>
+
+#include <cycloid/geometry/cycloid_geometry.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+using namespace cycloid::geometry;
+
+namespace
+{
+  constexpr double pi = dealii::numbers::PI;
+
+  GeometryParameters
+  modified(const double d_rp, const double d_rrp, const double delta_deg = 0)
+  {
+    GeometryParameters p;
+    p.delta_pin_circle_radius   = d_rp;
+    p.delta_pin_radius          = d_rrp;
+    p.rotation_modification_rad = delta_deg * pi / 180.;
+    return p;
+  }
+
+  /** Brute-force distance from q to the profile: dense sampling of the
+   * whole closed curve and golden-section refinement of the best sample. */
+  double
+  brute_force_distance(const CycloidGeometry &g, const Point<2> &q)
+  {
+    const unsigned int zc = g.parameters().n_teeth;
+    const unsigned int n  = 400 * zc;
+    const double       h  = 2. * pi * zc / n;
+    double             best = 1e300, best_phi = 0;
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        const double d = q.distance(g.profile(k * h).point);
+        if (d < best)
+          best = d, best_phi = k * h;
+      }
+    double       a = best_phi - h, b = best_phi + h;
+    const double r = (std::sqrt(5.) - 1.) / 2.;
+    for (int it = 0; it < 200; ++it)
+      {
+        const double x1 = b - r * (b - a), x2 = a + r * (b - a);
+        if (q.distance(g.profile(x1).point) < q.distance(g.profile(x2).point))
+          b = x2;
+        else
+          a = x1;
+      }
+    return q.distance(g.profile(0.5 * (a + b)).point);
+  }
+} // namespace
+
+
+
+TEST(Geometry, SeedCaseDerivedQuantities)
+{
+  const CycloidGeometry g{GeometryParameters()};
+  // rp = e zp / K1 = 2.2 * 40 / 0.675 (design.md: 130.370 mm).
+  EXPECT_NEAR(g.pin_circle_radius(), 130.370370370, 1e-8);
+  EXPECT_NEAR(g.root_radius(), 130.370370370 - 2.2 - 3., 1e-8);
+  EXPECT_NEAR(g.profile(0.).point.norm(), g.root_radius(), 1e-10);
+  EXPECT_NEAR(g.profile(pi).point.norm(), g.tip_radius(), 1e-10);
+  // Closed curve after zc teeth.
+  EXPECT_LT(g.profile(0.).point.distance(g.profile(2. * pi * 39).point),
+            1e-9);
+}
+
+
+
+TEST(Geometry, StandardProfileIsConjugateForBothDiscsAtAnyCrankAngle)
+{
+  const CycloidGeometry g{GeometryParameters()};
+  const double          tol = 1e-9 * g.pin_circle_radius();
+  for (const double psi_deg : {0., 3.7, 9., 11.25, 47., 200., 359.})
+    for (unsigned int disc = 0; disc < 2; ++disc)
+      for (unsigned int j = 0; j < 40; ++j)
+        {
+          const PinContact c = g.pin_contact(disc, j, psi_deg * pi / 180.);
+          EXPECT_LT(std::abs(c.clearance), tol)
+            << "disc " << disc << " pin " << j << " psi " << psi_deg;
+        }
+}
+
+
+
+TEST(Geometry, ClosestPointSearchAgreesWithBruteForce)
+{
+  const CycloidGeometry            g{modified(-0.01, 0.01, 0.005)};
+  std::mt19937                     rng(42);
+  std::uniform_real_distribution<> angle(0, 2 * pi), radius(121., 136.);
+  for (unsigned int k = 0; k < 12; ++k)
+    {
+      const double   a = angle(rng), r = radius(rng);
+      const Point<2> q(r * std::cos(a), r * std::sin(a));
+      ProfilePoint   cp;
+      const double   d = std::abs(g.signed_distance(q, &cp));
+      EXPECT_NEAR(d, brute_force_distance(g, q), 1e-9) << "point " << q;
+      // Stationarity: q - P is normal to the curve.
+      EXPECT_LT(std::abs((q - cp.point) * cp.derivative) /
+                  cp.derivative.norm(),
+                1e-9);
+    }
+}
+
+
+
+TEST(Geometry, NormalsPassThroughThePitchPointAndArmsMatchClosedForm)
+{
+  // Law of gearing for the conjugate profile: every contact normal passes
+  // through the pitch point, and the arm about the disc centre is
+  // l = e zc sin(phi) / sqrt(S).
+  const CycloidGeometry g{GeometryParameters()};
+  for (const double psi : {0.1, 1.3})
+    for (unsigned int disc = 0; disc < 2; ++disc)
+      {
+        const Point<2> pitch = g.pitch_point(disc, psi);
+        for (const PinContact &c : g.pin_contacts(disc, psi))
+          {
+            const Tensor<1, 2> d = pitch - c.contact_point;
+            EXPECT_LT(std::abs(d[0] * c.normal[1] - d[1] * c.normal[0]),
+                      1e-8);
+            EXPECT_NEAR(c.arm, g.closed_form_arm(c.phase), 1e-8);
+            // The normal points from the disc to the pin centre.
+            const Tensor<1, 2> to_pin = g.pin_centre(c.pin) - c.contact_point;
+            EXPECT_NEAR(to_pin * c.normal, 3., 1e-8);
+          }
+      }
+}
+
+
+
+TEST(Geometry, ClearancesArePeriodicInTheCrankAngle)
+{
+  // Period 2 pi / zp: the configuration at psi + T is the one at psi
+  // turned by 2 pi/zp, so pin j then sees what pin j-1 saw.
+  const CycloidGeometry g{modified(-0.01, 0.012, 0.005)};
+  const double          T = g.mesh_period();
+  for (const double psi : {0.0, 0.37})
+    for (unsigned int disc = 0; disc < 2; ++disc)
+      {
+        const auto a = g.pin_contacts(disc, psi);
+        const auto b = g.pin_contacts(disc, psi + T);
+        for (unsigned int j = 0; j < 40; ++j)
+          {
+            const PinContact &p = a[(j + 39) % 40], &q = b[j];
+            EXPECT_NEAR(q.clearance, p.clearance, 1e-12);
+            EXPECT_NEAR(q.arm, p.arm, 1e-9);
+            EXPECT_NEAR(q.phase, p.phase, 1e-9);
+          }
+        // And not with a wrong period: half a period changes clearances.
+        const auto   h    = g.pin_contacts(disc, psi + 0.5 * T);
+        double       diff = 0;
+        for (unsigned int j = 0; j < 40; ++j)
+          diff = std::max(diff, std::abs(h[j].clearance - a[j].clearance));
+        EXPECT_GT(diff, 1e-4);
+      }
+}
+
+
+
+TEST(Geometry, ClearanceRangesOfTheDesignExamples)
+{
+  // design.md: Delta rp = Delta rrp = +0.01 mm gives 0 to 2.6 um;
+  // Delta rp = -0.01, Delta rrp = +0.01 gives 17.4 to 20 um.
+  const struct
+  {
+    double d_rp, d_rrp, lo_um, hi_um;
+  } cases[] = {{0.01, 0.01, 0.0, 2.6}, {-0.01, 0.01, 17.4, 20.0}};
+  for (const auto &c : cases)
+    {
+      const CycloidGeometry g{modified(c.d_rp, c.d_rrp)};
+      double                lo = 1e9, hi = -1e9;
+      const unsigned int    n_phases = 30;
+      for (unsigned int k = 0; k < n_phases; ++k)
+        for (unsigned int disc = 0; disc < 2; ++disc)
+          for (const PinContact &p :
+               g.pin_contacts(disc, g.mesh_period() * k / n_phases))
+            {
+              lo = std::min(lo, p.clearance * 1e3);
+              hi = std::max(hi, p.clearance * 1e3);
+              // First-order closed form; the neglected second-order term
+              // is bounded by Delta^2 / rho_root (rho_root ~ 3.5 mm).
+              EXPECT_NEAR(p.clearance,
+                          g.first_order_clearance(p.phase),
+                          0.01 * 0.01 / g.profile(0.).curvature_radius);
+            }
+      EXPECT_NEAR(lo, c.lo_um, 0.05) << c.d_rp << ", " << c.d_rrp;
+      EXPECT_NEAR(hi, c.hi_um, 0.05) << c.d_rp << ", " << c.d_rrp;
+    }
+}
+
+
+
+TEST(Geometry, RotationModificationOpensClearanceOnOneFlank)
+{
+  // With backlash from Delta rrp, turning the profile clockwise by delta
+  // opens the clearance of a pin with arm l by delta * l (the rotation that
+  // closes it is counter-clockwise). The central difference over +delta and
+  // -delta cancels the second-order term (delta |p|)^2 / rho.
+  const CycloidGeometry g0{modified(0., 0.02, 0.)};
+  const CycloidGeometry gp{modified(0., 0.02, 0.005)};
+  const CycloidGeometry gm{modified(0., 0.02, -0.005)};
+  const CycloidGeometry gph{modified(0., 0.02, 0.0025)};
+  const CycloidGeometry gmh{modified(0., 0.02, -0.0025)};
+  const double          delta = 0.005 * pi / 180.;
+  for (const PinContact &c0 : g0.pin_contacts(0, 0.2))
+    {
+      const double cp = gp.pin_contact(0, c0.pin, 0.2).clearance;
+      const double cm = gm.pin_contact(0, c0.pin, 0.2).clearance;
+      // Third-order remainder: halving delta divides it by about 8.
+      const double ch =
+        0.5 * (gph.pin_contact(0, c0.pin, 0.2).clearance -
+               gmh.pin_contact(0, c0.pin, 0.2).clearance);
+      const double err_full = std::abs(0.5 * (cp - cm) - delta * c0.arm);
+      const double err_half = std::abs(ch - 0.5 * delta * c0.arm);
+      EXPECT_LT(err_full, 2e-3 * std::abs(delta * c0.arm) + 1e-9)
+        << "pin " << c0.pin;
+      EXPECT_LT(err_half, err_full / 6. + 1e-10) << "pin " << c0.pin;
+    }
+}
+
+
+
+TEST(Geometry, CurvatureMatchesTextbookClosedForm)
+{
+  for (const GeometryParameters &p :
+       {GeometryParameters(), modified(-0.01, 0.01)})
+    {
+      const CycloidGeometry g{p};
+      for (const double phi : {0., 0.3, 1.0, 1.9, 2.5, 3.1, 4.0, 5.5})
+        {
+          const double rho = g.profile(phi).curvature_radius;
+          const double cf  = g.closed_form_curvature_radius(phi);
+          EXPECT_NEAR(rho, cf, 1e-7 * std::max(1., std::abs(cf)))
+            << "phi " << phi;
+        }
+      // Root concave, tip convex.
+      EXPECT_GT(g.profile(0.).curvature_radius, 3.);
+      EXPECT_LT(g.profile(pi).curvature_radius, 0.);
+    }
+}
+
+
+
+TEST(Geometry, SeedBacklashIsClearanceAfterRigidTakeUp)
+{
+  // The seed's Delta(phi) equals the normal clearance minus the clearance
+  // closed by the rigid rotation that brings the pin at cos(phi) = K into
+  // contact (doc/analytic-model.md).
+  for (const GeometryParameters &p :
+       {modified(0.01, 0.01), modified(-0.01, 0.01), modified(-0.02, 0.005)})
+    {
+      const CycloidGeometry g{p};
+      const double          K     = g.modified_shortening_coefficient();
+      const double          phi_k = std::acos(K);
+      const double          beta0 =
+        g.first_order_clearance(phi_k) / g.closed_form_arm(phi_k);
+      for (const double phi : {0.2, 0.8, phi_k, 1.5, 2.4, 3.0})
+        EXPECT_NEAR(g.seed_backlash(phi),
+                    g.first_order_clearance(phi) -
+                      beta0 * g.closed_form_arm(phi),
+                    1e-12);
+      EXPECT_NEAR(g.seed_backlash(phi_k), 0., 1e-14);
+    }
+}
