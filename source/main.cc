@@ -2,6 +2,7 @@
 // parameter file, then hands over to the selected run mode.
 
 #include <deal.II/base/exceptions.h>
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
@@ -40,7 +41,7 @@ main(int argc, char *argv[])
   try
     {
       dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-      const bool root =
+      const bool                               root =
         dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 
       std::string filename;
@@ -58,10 +59,10 @@ main(int argc, char *argv[])
               dealii::ParameterHandler prm;
               cycloid::parameters::AllParameters::declare_parameters(prm);
               if (root)
-                prm.print_parameters(std::cout,
-                                     dealii::ParameterHandler::PRM |
-                                       dealii::ParameterHandler::
-                                         KeepDeclarationOrder);
+                prm.print_parameters(
+                  std::cout,
+                  dealii::ParameterHandler::PRM |
+                    dealii::ParameterHandler::KeepDeclarationOrder);
               return 0;
             }
           if (!arg.empty() && arg[0] == '-')

@@ -24,9 +24,9 @@ namespace
             const double       d_rrp = 0)
   {
     parameters::AllParameters p;
-    p.analytic.pair_model                    = model;
-    p.geometry.delta_pin_circle_radius       = d_rp;
-    p.geometry.delta_pin_radius              = d_rrp;
+    p.analytic.pair_model              = model;
+    p.geometry.delta_pin_circle_radius = d_rp;
+    p.geometry.delta_pin_radius        = d_rrp;
     return p;
   }
 } // namespace
@@ -45,8 +45,7 @@ TEST(PairModels, HertzHalfWidthOfTheDesignCase)
   EXPECT_NEAR(m.half_width(3200., pair), 1.1997, 1e-4);
   // Closed form a = sqrt(4 F R* / (pi E*)), written out independently.
   const double r_star = 10. * 13. / 23.;
-  const double e_star =
-    1. / ((1 - 0.0625) / 30000. + (1 - 0.09) / 29120.);
+  const double e_star = 1. / ((1 - 0.0625) / 30000. + (1 - 0.09) / 29120.);
   EXPECT_NEAR(m.half_width(3200., pair),
               std::sqrt(4. * 3200. * r_star / (pi * e_star)),
               1e-12);
@@ -83,7 +82,7 @@ TEST(PairModels, SeedStiffnessEqualsTheSeedsClosedForm)
   // k = pi b E rp S^{3/2} / (4 (1-mu^2) (rp S^{3/2} + 2 rrp T)) with
   // T = K1 (1+zp) cos phi - (1 + zp K1^2), on the concave flank.
   const StageModel model(seed_case("seed"));
-  const auto &     g = model.geometry();
+  const auto      &g      = model.geometry();
   const double     lambda = 0.7, b = 16., E = 212000., mu = 0.3;
   const double     K1 = 0.675, rp = g.pin_circle_radius(), rrp = 3.;
   for (const PinLoad &p : model.unloaded_pins(0.05))
@@ -126,8 +125,8 @@ TEST(LoadDistribution, TorqueBalanceAndComplementarity)
             unsigned int engaged = 0;
             for (const PinLoad &p : s.pins)
               {
-                const double gap =
-                  std::max(p.contact.clearance, 0.) - s.rotation * p.contact.arm;
+                const double gap = std::max(p.contact.clearance, 0.) -
+                                   s.rotation * p.contact.arm;
                 EXPECT_GE(p.force, 0.);
                 if (gap < -1e-12)
                   {
@@ -227,7 +226,7 @@ TEST(LoadDistribution, EngagementAndStiffnessGrowWithTorque)
   for (const std::string model_name : {"seed", "line-contact"})
     {
       const StageModel model(seed_case(model_name, -0.01, 0.01));
-      unsigned int     pins = 0;
+      unsigned int     pins     = 0;
       double           k_secant = 0, k_tangent = 0, beta = 0;
       for (const double torque : {3., 30., 300., 1000., 3000., 10000.})
         {
@@ -262,8 +261,8 @@ TEST(LoadDistribution, WarmStartGivesTheSameStateInFewerIterations)
 
 TEST(LoadDistribution, RigidPinsAreStifferThanElasticPins)
 {
-  auto rigid         = seed_case("line-contact");
-  rigid.scene.pins   = parameters::SceneParameters::PinModel::rigid;
+  auto rigid       = seed_case("line-contact");
+  rigid.scene.pins = parameters::SceneParameters::PinModel::rigid;
   const StageModel e(seed_case("line-contact")), r(rigid);
   EXPECT_GT(r.solve(0., 1000., 0.).k_tangent, e.solve(0., 1000., 0.).k_tangent);
 }

@@ -35,9 +35,9 @@ namespace
   double
   brute_force_distance(const CycloidGeometry &g, const Point<2> &q)
   {
-    const unsigned int zc = g.parameters().n_teeth;
-    const unsigned int n  = 400 * zc;
-    const double       h  = 2. * pi * zc / n;
+    const unsigned int zc   = g.parameters().n_teeth;
+    const unsigned int n    = 400 * zc;
+    const double       h    = 2. * pi * zc / n;
     double             best = 1e300, best_phi = 0;
     for (unsigned int k = 0; k < n; ++k)
       {
@@ -70,8 +70,7 @@ TEST(Geometry, SeedCaseDerivedQuantities)
   EXPECT_NEAR(g.profile(0.).point.norm(), g.root_radius(), 1e-10);
   EXPECT_NEAR(g.profile(pi).point.norm(), g.tip_radius(), 1e-10);
   // Closed curve after zc teeth.
-  EXPECT_LT(g.profile(0.).point.distance(g.profile(2. * pi * 39).point),
-            1e-9);
+  EXPECT_LT(g.profile(0.).point.distance(g.profile(2. * pi * 39).point), 1e-9);
 }
 
 
@@ -105,8 +104,7 @@ TEST(Geometry, ClosestPointSearchAgreesWithBruteForce)
       const double   d = std::abs(g.signed_distance(q, &cp));
       EXPECT_NEAR(d, brute_force_distance(g, q), 1e-9) << "point " << q;
       // Stationarity: q - P is normal to the curve.
-      EXPECT_LT(std::abs((q - cp.point) * cp.derivative) /
-                  cp.derivative.norm(),
+      EXPECT_LT(std::abs((q - cp.point) * cp.derivative) / cp.derivative.norm(),
                 1e-9);
     }
 }
@@ -126,8 +124,7 @@ TEST(Geometry, NormalsPassThroughThePitchPointAndArmsMatchClosedForm)
         for (const PinContact &c : g.pin_contacts(disc, psi))
           {
             const Tensor<1, 2> d = pitch - c.contact_point;
-            EXPECT_LT(std::abs(d[0] * c.normal[1] - d[1] * c.normal[0]),
-                      1e-8);
+            EXPECT_LT(std::abs(d[0] * c.normal[1] - d[1] * c.normal[0]), 1e-8);
             EXPECT_NEAR(c.arm, g.closed_form_arm(c.phase), 1e-8);
             // The normal points from the disc to the pin centre.
             const Tensor<1, 2> to_pin = g.pin_centre(c.pin) - c.contact_point;
@@ -157,8 +154,8 @@ TEST(Geometry, ClearancesArePeriodicInTheCrankAngle)
             EXPECT_NEAR(q.phase, p.phase, 1e-9);
           }
         // And not with a wrong period: half a period changes clearances.
-        const auto   h    = g.pin_contacts(disc, psi + 0.5 * T);
-        double       diff = 0;
+        const auto h    = g.pin_contacts(disc, psi + 0.5 * T);
+        double     diff = 0;
         for (unsigned int j = 0; j < 40; ++j)
           diff = std::max(diff, std::abs(h[j].clearance - a[j].clearance));
         EXPECT_GT(diff, 1e-4);
@@ -217,9 +214,8 @@ TEST(Geometry, RotationModificationOpensClearanceOnOneFlank)
       const double cp = gp.pin_contact(0, c0.pin, 0.2).clearance;
       const double cm = gm.pin_contact(0, c0.pin, 0.2).clearance;
       // Third-order remainder: halving delta divides it by about 8.
-      const double ch =
-        0.5 * (gph.pin_contact(0, c0.pin, 0.2).clearance -
-               gmh.pin_contact(0, c0.pin, 0.2).clearance);
+      const double ch       = 0.5 * (gph.pin_contact(0, c0.pin, 0.2).clearance -
+                               gmh.pin_contact(0, c0.pin, 0.2).clearance);
       const double err_full = std::abs(0.5 * (cp - cm) - delta * c0.arm);
       const double err_half = std::abs(ch - 0.5 * delta * c0.arm);
       EXPECT_LT(err_full, 2e-3 * std::abs(delta * c0.arm) + 1e-9)

@@ -2,6 +2,7 @@
 // the parameter (or the cause), and the defaults are the seed case.
 
 #include <deal.II/base/exceptions.h>
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <cycloid/analytic/stage_model.h>
@@ -131,12 +132,14 @@ TEST(Parameters, BadMaterialsAndLoadsNameTheParameter)
 
 TEST(Parameters, ModificationsWithClearanceAreAccepted)
 {
-  EXPECT_EQ(error_of(geometry_section("set Pin circle radius modification = 0.01\n"
-                              "set Pin radius modification = 0.01")),
+  EXPECT_EQ(error_of(
+              geometry_section("set Pin circle radius modification = 0.01\n"
+                               "set Pin radius modification = 0.01")),
             "");
-  EXPECT_EQ(error_of(geometry_section("set Pin circle radius modification = -0.01\n"
-                              "set Pin radius modification = 0.01\n"
-                              "set Rotation modification = 0.003")),
+  EXPECT_EQ(error_of(
+              geometry_section("set Pin circle radius modification = -0.01\n"
+                               "set Pin radius modification = 0.01\n"
+                               "set Rotation modification = 0.003")),
             "");
 }
 

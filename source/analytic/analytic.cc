@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+
 #include <deal.II/base/numbers.h>
 
 #include <cycloid/analytic/analytic_parameters.h>
@@ -90,9 +91,9 @@ namespace cycloid
 
 
     std::unique_ptr<PairStiffnessModel>
-    PairStiffnessModel::create(const AnalyticParameters &            parameters,
+    PairStiffnessModel::create(const AnalyticParameters             &parameters,
                                const parameters::MaterialParameters &material,
-                               const parameters::SceneParameters &   scene,
+                               const parameters::SceneParameters    &scene,
                                const double tooth_width)
     {
       const double e_disc = material.disc.plane_strain_modulus();
@@ -158,7 +159,8 @@ namespace cycloid
 
 
     double
-    SeedPairStiffness::approach(const double force, const PairGeometry &pair) const
+    SeedPairStiffness::approach(const double        force,
+                                const PairGeometry &pair) const
     {
       return force > 0 ? force / stiffness(0., pair) : 0.;
     }
@@ -180,8 +182,8 @@ namespace cycloid
     LineContactPairStiffness::half_width(const double        force,
                                          const PairGeometry &pair) const
     {
-      const double inv_r = 1. / pair.pin_radius -
-                           inverse_radius(pair.profile_curvature_radius);
+      const double inv_r =
+        1. / pair.pin_radius - inverse_radius(pair.profile_curvature_radius);
       AssertThrow(inv_r > 0,
                   dealii::ExcMessage(
                     "line-contact pair stiffness: conformal contact (profile "
@@ -283,7 +285,7 @@ namespace cycloid
 
 
     LoadDistribution::LoadDistribution(const PairStiffnessModel &model,
-                                       const double relative_tolerance,
+                                       const double       relative_tolerance,
                                        const unsigned int max_iterations)
       : model(model)
       , tolerance(relative_tolerance)
@@ -293,9 +295,9 @@ namespace cycloid
 
 
     double
-    LoadDistribution::torque_at(const double           beta,
+    LoadDistribution::torque_at(const double          beta,
                                 std::vector<PinLoad> &pins,
-                                double &               slope) const
+                                double               &slope) const
     {
       double torque = 0;
       slope         = 0;
@@ -359,8 +361,8 @@ namespace cycloid
       double       step = 1e-6;
       if (sign * beta_guess > takeup)
         step = sign * beta_guess - takeup;
-      double hi = lo + step;
-      double dg = 0;
+      double       hi       = lo + step;
+      double       dg       = 0;
       unsigned int n_expand = 0;
       while (g(hi, dg) < goal)
         {

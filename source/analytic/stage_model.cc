@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+
 #include <deal.II/base/numbers.h>
 
 #include <cycloid/analytic/stage_model.h>
@@ -36,14 +37,12 @@ namespace cycloid
           double depth = std::numeric_limits<double>::max();
           for (unsigned int k = 0; k < g.n_crank_holes; ++k)
             {
-              const double          a = 2. * dealii::numbers::PI * k /
-                                 g.n_crank_holes;
+              const double a = 2. * dealii::numbers::PI * k / g.n_crank_holes;
               const dealii::Point<2> centre(g.crank_hole_circle_radius *
                                               std::cos(a),
                                             g.crank_hole_circle_radius *
                                               std::sin(a));
-              depth = std::min(depth,
-                               p.distance(centre) - g.crank_hole_radius);
+              depth = std::min(depth, p.distance(centre) - g.crank_hole_radius);
             }
           return depth;
         }
@@ -62,8 +61,8 @@ namespace cycloid
             if (c.clearance < -1e-7)
               {
                 std::ostringstream msg;
-                msg << "pin " << c.pin << " overlaps disc " << d
-                    << " by " << -c.clearance * 1e3 << " um at crank angle "
+                msg << "pin " << c.pin << " overlaps disc " << d << " by "
+                    << -c.clearance * 1e3 << " um at crank angle "
                     << psi * 180. / dealii::numbers::PI
                     << " deg: the scene cannot start from a negative "
                        "clearance.";

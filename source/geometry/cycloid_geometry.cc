@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+
 #include <deal.II/base/numbers.h>
 
 #include <cycloid/geometry/cycloid_geometry.h>
@@ -72,10 +73,7 @@ namespace cycloid
                           "39",
                           Integer(2, 999),
                           "Number of cycloid teeth zc [-]; must be zp - 1.");
-        prm.declare_entry("Pin radius",
-                          "3",
-                          Double(0),
-                          "Pin radius rrp [mm].");
+        prm.declare_entry("Pin radius", "3", Double(0), "Pin radius rrp [mm].");
         prm.declare_entry("Eccentricity",
                           "2.2",
                           Double(0),
@@ -86,11 +84,12 @@ namespace cycloid
           Double(0, 1),
           "Shortening coefficient K1 = e zp / rp [-], 0 < K1 < 1; the pin "
           "circle radius rp follows from it.");
-        prm.declare_entry("Tooth width",
-                          "16",
-                          Double(0),
-                          "Tooth (disc) width b [mm]. 2D (plane strain) results "
-                          "are reported for this width.");
+        prm.declare_entry(
+          "Tooth width",
+          "16",
+          Double(0),
+          "Tooth (disc) width b [mm]. 2D (plane strain) results "
+          "are reported for this width.");
         prm.declare_entry(
           "Pin circle radius modification",
           "0",
@@ -138,20 +137,21 @@ namespace cycloid
     {
       prm.enter_subsection("Geometry");
       {
-        n_pins                    = prm.get_integer("Number of pins");
-        n_teeth                   = prm.get_integer("Number of cycloid teeth");
-        pin_radius                = prm.get_double("Pin radius");
-        eccentricity              = prm.get_double("Eccentricity");
-        shortening_coefficient    = prm.get_double("Shortening coefficient");
-        tooth_width               = prm.get_double("Tooth width");
-        delta_pin_circle_radius   = prm.get_double("Pin circle radius modification");
-        delta_pin_radius          = prm.get_double("Pin radius modification");
-        rotation_modification_rad = prm.get_double("Rotation modification") *
-                                    pi / 180.;
-        bore_radius               = prm.get_double("Bore radius");
-        n_crank_holes             = prm.get_integer("Number of crank holes");
-        crank_hole_radius         = prm.get_double("Crank hole radius");
-        crank_hole_circle_radius  = prm.get_double("Crank hole circle radius");
+        n_pins                 = prm.get_integer("Number of pins");
+        n_teeth                = prm.get_integer("Number of cycloid teeth");
+        pin_radius             = prm.get_double("Pin radius");
+        eccentricity           = prm.get_double("Eccentricity");
+        shortening_coefficient = prm.get_double("Shortening coefficient");
+        tooth_width            = prm.get_double("Tooth width");
+        delta_pin_circle_radius =
+          prm.get_double("Pin circle radius modification");
+        delta_pin_radius = prm.get_double("Pin radius modification");
+        rotation_modification_rad =
+          prm.get_double("Rotation modification") * pi / 180.;
+        bore_radius              = prm.get_double("Bore radius");
+        n_crank_holes            = prm.get_integer("Number of crank holes");
+        crank_hole_radius        = prm.get_double("Crank hole radius");
+        crank_hole_circle_radius = prm.get_double("Crank hole circle radius");
       }
       prm.leave_subsection();
     }
@@ -197,8 +197,7 @@ namespace cycloid
                     prm.shortening_coefficient < 1,
                   ExcMessage("Geometry/Shortening coefficient K1 must lie in "
                              "(0, 1), got " +
-                             std::to_string(prm.shortening_coefficient) +
-                             "."));
+                             std::to_string(prm.shortening_coefficient) + "."));
       AssertThrow(prm.n_teeth + 1 == prm.n_pins,
                   ExcMessage("Geometry/Number of cycloid teeth must equal "
                              "Number of pins - 1 (zc = zp - 1), got zp = " +
@@ -265,9 +264,8 @@ namespace cycloid
             << " mm, Pin radius modification = " << prm.delta_pin_radius
             << " mm, Rotation modification = "
             << prm.rotation_modification_rad * 180. / pi
-            << " deg) make the disc overlap a pin at rest by "
-            << -worst * 1e3 << " um (at tooth phase "
-            << worst_phi * 180. / pi
+            << " deg) make the disc overlap a pin at rest by " << -worst * 1e3
+            << " um (at tooth phase " << worst_phi * 180. / pi
             << " deg). The scene cannot start from a negative clearance.";
         AssertThrow(worst > -1e-7, ExcMessage(msg.str()));
       }
@@ -359,9 +357,9 @@ namespace cycloid
 
       const double S    = s_function(phi);
       const double sphi = std::sin(phi), cphi = std::cos(phi);
-      const double s    = 1. / std::sqrt(S);
-      const double s3   = s * s * s;
-      const double ds   = -k_mod * sphi * s3;
+      const double s  = 1. / std::sqrt(S);
+      const double s3 = s * s * s;
+      const double ds = -k_mod * sphi * s3;
       const double dds =
         -k_mod * cphi * s3 + 3. * k_mod * k_mod * sphi * sphi * s3 * s * s;
 
@@ -395,8 +393,8 @@ namespace cycloid
       const double speed = dp.norm();
       const double kappa = cross(dp, ddp) / (speed * speed * speed);
       Tensor<1, 2> left;
-      left[0]      = -dp[1] / speed;
-      left[1]      = dp[0] / speed;
+      left[0]           = -dp[1] / speed;
+      left[1]           = dp[0] / speed;
       const double side = (left * n) >= 0 ? 1. : -1.;
       result.curvature_radius =
         (kappa != 0.) ? side / kappa : std::numeric_limits<double>::infinity();
@@ -446,9 +444,9 @@ namespace cycloid
 
       // Safeguarded Newton on g(phi) = (P - q) . P' inside the bracket of
       // the best sample's neighbours.
-      double a   = lo + (best_k == 0 ? 0 : best_k - 1) * h;
-      double b   = lo + std::min(best_k + 1, n_samples) * h;
-      double phi = lo + best_k * h;
+      double     a        = lo + (best_k == 0 ? 0 : best_k - 1) * h;
+      double     b        = lo + std::min(best_k + 1, n_samples) * h;
+      double     phi      = lo + best_k * h;
       const auto g_and_dg = [&](const double x, double &g, double &dg) {
         Tensor<1, 2> p, dp, ddp, n;
         evaluate(x, p, dp, ddp, n);
@@ -486,7 +484,7 @@ namespace cycloid
 
     double
     CycloidGeometry::signed_distance(const Point<2> &q,
-                                     ProfilePoint *  closest) const
+                                     ProfilePoint   *closest) const
     {
       const ProfilePoint cp = closest_point(q);
       if (closest != nullptr)
@@ -515,7 +513,8 @@ namespace cycloid
 
 
     Point<2>
-    CycloidGeometry::disc_centre(const unsigned int disc, const double psi) const
+    CycloidGeometry::disc_centre(const unsigned int disc,
+                                 const double       psi) const
     {
       const double a = disc_crank_angle(disc, psi);
       return Point<2>(prm.eccentricity * std::cos(a),
@@ -525,7 +524,8 @@ namespace cycloid
 
 
     double
-    CycloidGeometry::disc_rotation(const unsigned int disc, const double psi) const
+    CycloidGeometry::disc_rotation(const unsigned int disc,
+                                   const double       psi) const
     {
       return -disc_crank_angle(disc, psi) / zc;
     }
@@ -535,7 +535,7 @@ namespace cycloid
     Point<2>
     CycloidGeometry::to_housing(const unsigned int disc,
                                 const double       psi,
-                                const Point<2> &   p_disc) const
+                                const Point<2>    &p_disc) const
     {
       return disc_centre(disc, psi) +
              rotate(Tensor<1, 2>(p_disc), disc_rotation(disc, psi));
@@ -546,10 +546,10 @@ namespace cycloid
     Point<2>
     CycloidGeometry::to_disc(const unsigned int disc,
                              const double       psi,
-                             const Point<2> &   q_housing) const
+                             const Point<2>    &q_housing) const
     {
-      return Point<2>(rotate(q_housing - disc_centre(disc, psi),
-                             -disc_rotation(disc, psi)));
+      return Point<2>(
+        rotate(q_housing - disc_centre(disc, psi), -disc_rotation(disc, psi)));
     }
 
 
@@ -559,11 +559,11 @@ namespace cycloid
                                  const unsigned int j,
                                  const double       psi) const
     {
-      const Point<2>     q = to_disc(disc, psi, pin_centre(j));
-      ProfilePoint       cp;
-      const double       d     = signed_distance(q, &cp);
-      const double       angle = disc_rotation(disc, psi);
-      PinContact         result;
+      const Point<2> q = to_disc(disc, psi, pin_centre(j));
+      ProfilePoint   cp;
+      const double   d     = signed_distance(q, &cp);
+      const double   angle = disc_rotation(disc, psi);
+      PinContact     result;
       result.disc             = disc;
       result.pin              = j;
       result.clearance        = d - prm.pin_radius;
@@ -579,7 +579,8 @@ namespace cycloid
 
 
     std::vector<PinContact>
-    CycloidGeometry::pin_contacts(const unsigned int disc, const double psi) const
+    CycloidGeometry::pin_contacts(const unsigned int disc,
+                                  const double       psi) const
     {
       std::vector<PinContact> result;
       result.reserve(zp);
@@ -591,7 +592,8 @@ namespace cycloid
 
 
     Point<2>
-    CycloidGeometry::pitch_point(const unsigned int disc, const double psi) const
+    CycloidGeometry::pitch_point(const unsigned int disc,
+                                 const double       psi) const
     {
       const double a = disc_crank_angle(disc, psi);
       const double d = prm.eccentricity * zp;
@@ -604,8 +606,8 @@ namespace cycloid
     CycloidGeometry::closed_form_curvature_radius(const double phi) const
     {
       const double S = s_function(phi);
-      const double T = k_mod * (1. + zp) * std::cos(phi) -
-                       (1. + zp * k_mod * k_mod);
+      const double T =
+        k_mod * (1. + zp) * std::cos(phi) - (1. + zp * k_mod * k_mod);
       return big_r * S * std::sqrt(S) / T + small_r;
     }
 
@@ -655,8 +657,8 @@ namespace cycloid
         {
           const double phi = pi * k / n_samples;
           const double S   = s_function(phi);
-          const double T   = k_mod * (1. + zp) * std::cos(phi) -
-                           (1. + zp * k_mod * k_mod);
+          const double T =
+            k_mod * (1. + zp) * std::cos(phi) - (1. + zp * k_mod * k_mod);
           if (T < 0)
             smallest = std::min(smallest, -big_r * S * std::sqrt(S) / T);
         }

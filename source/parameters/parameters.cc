@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/utilities.h>
 
@@ -15,8 +16,8 @@ namespace cycloid
     {
       void
       declare_material(dealii::ParameterHandler &prm,
-                       const std::string &       body,
-                       const ElasticMaterial &   defaults)
+                       const std::string        &body,
+                       const ElasticMaterial    &defaults)
       {
         using dealii::Patterns::Double;
         prm.declare_entry(body + " Young's modulus",
@@ -48,8 +49,7 @@ namespace cycloid
                     dealii::ExcMessage("Material/" + body +
                                        " Poisson's ratio must lie in "
                                        "(-1, 0.5), got " +
-                                       std::to_string(m.poissons_ratio) +
-                                       "."));
+                                       std::to_string(m.poissons_ratio) + "."));
         AssertThrow(m.density > 0,
                     dealii::ExcMessage("Material/" + body +
                                        " density must be positive."));
@@ -193,13 +193,12 @@ namespace cycloid
     {
       prm.enter_subsection("Scene");
       {
-        dimension   = prm.get_integer("Dimension");
-        n_discs     = prm.get_integer("Number of discs");
-        pins        = prm.get("Pins") == "rigid" ? PinModel::rigid :
-                                                    PinModel::elastic;
-        pin_support = prm.get("Pin support") == "housing" ?
-                        PinSupport::housing :
-                        PinSupport::axis;
+        dimension = prm.get_integer("Dimension");
+        n_discs   = prm.get_integer("Number of discs");
+        pins = prm.get("Pins") == "rigid" ? PinModel::rigid : PinModel::elastic;
+        pin_support       = prm.get("Pin support") == "housing" ?
+                              PinSupport::housing :
+                              PinSupport::axis;
         pin_core_radius   = prm.get_double("Pin core radius");
         load_introduction = prm.get("Load introduction") == "bore" ?
                               LoadIntroduction::bore :

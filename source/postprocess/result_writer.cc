@@ -54,7 +54,7 @@ namespace cycloid
 
 
     void
-    ResultWriter::write(const StiffnessRow &            s,
+    ResultWriter::write(const StiffnessRow             &s,
                         const std::vector<PinForceRow> &pins)
     {
       if (!active)
@@ -72,8 +72,8 @@ namespace cycloid
                    << p.pin << ',' << p.fx_N << ',' << p.fy_N << ',' << p.fn_N
                    << ',' << p.arm_mm << ',' << p.clearance_um << ','
                    << p.phase_deg << ',' << p.approach_um << ','
-                   << p.pair_stiffness_N_per_mm << ',' << p.contact_x_mm
-                   << ',' << p.contact_y_mm << '\n';
+                   << p.pair_stiffness_N_per_mm << ',' << p.contact_x_mm << ','
+                   << p.contact_y_mm << '\n';
       stiffness.flush();
       pin_forces.flush();
     }

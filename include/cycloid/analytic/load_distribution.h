@@ -93,9 +93,9 @@ namespace cycloid
       /** Torque [N mm] and slope [N mm/rad] at rotation beta, filling the
        * per-pin state. */
       double
-      torque_at(const double           beta,
+      torque_at(const double          beta,
                 std::vector<PinLoad> &pins,
-                double &               slope) const;
+                double               &slope) const;
 
       const PairStiffnessModel &model;
       const double              tolerance;

@@ -65,9 +65,9 @@ namespace cycloid
 
       /** Create the model named in @p parameters. */
       static std::unique_ptr<PairStiffnessModel>
-      create(const AnalyticParameters &            parameters,
+      create(const AnalyticParameters             &parameters,
              const parameters::MaterialParameters &material,
-             const parameters::SceneParameters &   scene,
+             const parameters::SceneParameters    &scene,
              const double                          tooth_width);
     };
 

@@ -50,7 +50,9 @@ namespace cycloid
       /** Solve the load distribution at crank angle @p psi [rad] for
        * torque @p torque [N m], warm-started from @p beta_guess [rad]. */
       LoadState
-      solve(const double psi, const double torque, const double beta_guess) const;
+      solve(const double psi,
+            const double torque,
+            const double beta_guess) const;
 
       /** Solve the load distribution over already computed unloaded pins
        * (see unloaded_pins()). */

@@ -169,7 +169,8 @@ namespace cycloid
       {
         return i_h;
       }
-      /** Shortening coefficient of the modified profile K = e zp/(rp+Delta rp). */
+      /** Shortening coefficient of the modified profile K = e zp/(rp+Delta rp).
+       */
       double
       modified_shortening_coefficient() const
       {
@@ -237,13 +238,13 @@ namespace cycloid
       Point<2>
       to_housing(const unsigned int disc,
                  const double       psi,
-                 const Point<2> &   p_disc) const;
+                 const Point<2>    &p_disc) const;
 
       /** Map a housing-frame point to the disc frame. */
       Point<2>
       to_disc(const unsigned int disc,
               const double       psi,
-              const Point<2> &   q_housing) const;
+              const Point<2>    &q_housing) const;
 
       /** Contact quantities of pin @p j against disc @p disc at crank
        * angle @p psi, from a closest-point search. */

@@ -23,12 +23,12 @@ namespace cycloid
      */
     struct AllParameters
     {
-      RunParameters                         run;
-      geometry::GeometryParameters          geometry;
-      MaterialParameters                    material;
-      LoadingParameters                     loading;
-      SceneParameters                       scene;
-      analytic::AnalyticParameters          analytic;
+      RunParameters                run;
+      geometry::GeometryParameters geometry;
+      MaterialParameters           material;
+      LoadingParameters            loading;
+      SceneParameters              scene;
+      analytic::AnalyticParameters analytic;
 
       /** Declare every subsection. */
       static void

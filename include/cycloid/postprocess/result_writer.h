@@ -15,21 +15,21 @@ namespace cycloid
      */
     struct StiffnessRow
     {
-      unsigned int  step                 = 0;
-      double        crank_deg            = 0;
-      double        torque_Nm            = 0;
-      double        rotation_rad         = 0;
-      double        k_secant             = 0; ///< T / beta [N m/rad]
-      double        k_tangent            = 0; ///< dT/dbeta [N m/rad]
-      unsigned int  pins_in_contact      = 0;
-      unsigned int  iterations           = 0; ///< active-set (FE) or
-                                              ///< load-balance iterations
-      unsigned long dofs                 = 0;
-      double        wall_s               = 0;
-      double        takeup_rad           = 0; ///< rigid lost motion
-      double        k_secant_elastic     = 0; ///< T / (beta - takeup)
-      double        reaction_torque_Nm   = 0; ///< sum F * arm
-      double        max_pin_force_N      = 0;
+      unsigned int step            = 0;
+      double       crank_deg       = 0;
+      double       torque_Nm       = 0;
+      double       rotation_rad    = 0;
+      double       k_secant        = 0; ///< T / beta [N m/rad]
+      double       k_tangent       = 0; ///< dT/dbeta [N m/rad]
+      unsigned int pins_in_contact = 0;
+      unsigned int iterations      = 0; ///< active-set (FE) or
+                                        ///< load-balance iterations
+      unsigned long dofs               = 0;
+      double        wall_s             = 0;
+      double        takeup_rad         = 0; ///< rigid lost motion
+      double        k_secant_elastic   = 0; ///< T / (beta - takeup)
+      double        reaction_torque_Nm = 0; ///< sum F * arm
+      double        max_pin_force_N    = 0;
     };
 
     /**
@@ -50,8 +50,8 @@ namespace cycloid
       double       phase_deg    = 0; ///< tooth phase, 0 at the root
       double       approach_um  = 0; ///< beta * arm - clearance, >= 0
       double       pair_stiffness_N_per_mm = 0;
-      double       contact_x_mm = 0;
-      double       contact_y_mm = 0;
+      double       contact_x_mm            = 0;
+      double       contact_y_mm            = 0;
     };
 
     /** Radians per arcminute. */

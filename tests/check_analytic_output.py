@@ -1,0 +1,263 @@
+#!/usr/bin/python3
+"""Independent check of an `analytic` run's stiffness.csv and pin_forces.csv.
+
+Re-implements from design.md (not from the C++ sources) the profile in its
+x/y form, the kinematic assembly, a brute-force closest-point search, the
+curvature by finite differences, the disc depth and the pair models, and
+checks the program's output through the contract's column names:
+
+  * clearance, arm and force direction of every pin;
+  * torque balance sum(Fn * arm) = T and the pins in contact;
+  * the load distribution: Fn > 0 exactly where beta * arm > clearance, and
+    the pair model's force at the written approach;
+  * K_tangent = sum(k l^2) and K_secant = T / beta;
+  * periodicity between the first and last phase of a closed period (when
+    the load introduction is axisymmetric).
+
+Usage: check_analytic_output.py FILE.prm OUTPUT_DIR
+"""
+import csv
+import math
+import sys
+
+import numpy as np
+
+DEFAULTS = {
+    ("Geometry", "Number of pins"): "40",
+    ("Geometry", "Number of cycloid teeth"): "39",
+    ("Geometry", "Pin radius"): "3",
+    ("Geometry", "Eccentricity"): "2.2",
+    ("Geometry", "Shortening coefficient"): "0.675",
+    ("Geometry", "Tooth width"): "16",
+    ("Geometry", "Pin circle radius modification"): "0",
+    ("Geometry", "Pin radius modification"): "0",
+    ("Geometry", "Rotation modification"): "0",
+    ("Geometry", "Bore radius"): "25",
+    ("Geometry", "Number of crank holes"): "3",
+    ("Geometry", "Crank hole radius"): "15",
+    ("Geometry", "Crank hole circle radius"): "65",
+    ("Material", "Disc Young's modulus"): "212000",
+    ("Material", "Disc Poisson's ratio"): "0.3",
+    ("Material", "Pin Young's modulus"): "212000",
+    ("Material", "Pin Poisson's ratio"): "0.3",
+    ("Loading", "Number of phases"): "1",
+    ("Scene", "Number of discs"): "2",
+    ("Scene", "Pins"): "elastic",
+    ("Scene", "Load introduction"): "crank holes",
+    ("Analytic", "Pair stiffness model"): "line-contact",
+    ("Analytic", "Load sharing coefficient"): "0.7",
+}
+
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+
+
+def read_prm(path):
+    values, section = dict(DEFAULTS), []
+    for raw in open(path):
+        line = raw.split("#")[0].strip()
+        if line.startswith("subsection"):
+            section.append(line.split(None, 1)[1].strip())
+        elif line == "end":
+            section.pop()
+        elif line.startswith("set"):
+            key, value = line[3:].split("=", 1)
+            values[(section[-1] if section else "", key.strip())] = value.strip()
+    return lambda s, k: values[(s, k)]
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return rows
+
+
+def main(prm_path, outdir):
+    get = read_prm(prm_path)
+    zp = int(get("Geometry", "Number of pins"))
+    zc = int(get("Geometry", "Number of cycloid teeth"))
+    rrp = float(get("Geometry", "Pin radius"))
+    e = float(get("Geometry", "Eccentricity"))
+    k1 = float(get("Geometry", "Shortening coefficient"))
+    b = float(get("Geometry", "Tooth width"))
+    d_rp = float(get("Geometry", "Pin circle radius modification"))
+    d_rrp = float(get("Geometry", "Pin radius modification"))
+    delta = math.radians(float(get("Geometry", "Rotation modification")))
+    n_discs = int(get("Scene", "Number of discs"))
+    rp = e * zp / k1
+    R, r = rp + d_rp, rrp + d_rrp
+    K = e * zp / R
+    ih = zp / zc
+
+    def profile(phi):
+        s = 1 + K * K - 2 * K * np.cos(phi)
+        w = 1 / np.sqrt(s)
+        x = (R - r * w) * np.cos((1 - ih) * phi) - (e - K * r * w) * np.cos(ih * phi)
+        y = (R - r * w) * np.sin((1 - ih) * phi) + (e - K * r * w) * np.sin(ih * phi)
+        c, sn = math.cos(-delta), math.sin(-delta)
+        return c * x - sn * y, sn * x + c * y
+
+    # Dense samples of the closed profile.
+    n = zc * 2000
+    grid = np.arange(n) * (2 * math.pi * zc / n)
+    gx, gy = profile(grid)
+    h = grid[1] - grid[0]
+
+    def d_profile(phi):
+        """dP/dphi by the complex-step method (exact to round-off)."""
+        hc = 1e-30
+        x, y = profile(phi + 1j * hc)
+        return np.array([np.imag(x) / hc, np.imag(y) / hc])
+
+    def closest(q):
+        """Brute force over the dense samples, then Newton on (P-q).P' = 0."""
+        d2 = (gx - q[0]) ** 2 + (gy - q[1]) ** 2
+        phi = grid[int(np.argmin(d2))]
+        for _ in range(30):
+            p = np.array(profile(phi))
+            t = d_profile(phi)
+            eps = 1e-5
+            tt = (d_profile(phi + eps) - d_profile(phi - eps)) / (2 * eps)
+            step = np.dot(p - q, t) / (np.dot(t, t) + np.dot(p - q, tt))
+            phi -= step
+            if abs(step) < 1e-15 * max(1.0, abs(phi)):
+                break
+        return phi
+
+    def local(phi):
+        """Point, outward normal, signed curvature radius (concave > 0)."""
+        p = np.array(profile(phi))
+        t = d_profile(phi)
+        eps = 1e-5
+        tt = (d_profile(phi + eps) - d_profile(phi - eps)) / (2 * eps)
+        normal = np.array([-t[1], t[0]]) / np.linalg.norm(t)
+        kappa = (t[0] * tt[1] - t[1] * tt[0]) / np.linalg.norm(t) ** 3
+        return p, normal, 1 / kappa
+
+    holes = []
+    if get("Scene", "Load introduction") == "crank holes":
+        nh = int(get("Geometry", "Number of crank holes"))
+        rc = float(get("Geometry", "Crank hole circle radius"))
+        holes = [(rc * math.cos(2 * math.pi * k / nh), rc * math.sin(2 * math.pi * k / nh)) for k in range(nh)]
+    rh = float(get("Geometry", "Crank hole radius"))
+    bore = float(get("Geometry", "Bore radius"))
+
+    def depth(p):
+        if holes:
+            return min(math.hypot(p[0] - hx, p[1] - hy) - rh for hx, hy in holes)
+        return math.hypot(*p) - bore
+
+    ed, nd = float(get("Material", "Disc Young's modulus")), float(get("Material", "Disc Poisson's ratio"))
+    ep, np_ = float(get("Material", "Pin Young's modulus")), float(get("Material", "Pin Poisson's ratio"))
+    c_d = (1 - nd**2) / ed
+    c_p = 0.0 if get("Scene", "Pins") == "rigid" else (1 - np_**2) / ep
+    model = get("Analytic", "Pair stiffness model")
+    lam = float(get("Analytic", "Load sharing coefficient"))
+
+    def pair(force, rho, L):
+        """(approach, compliance d approach/dF) of the pair at force F."""
+        inv_rstar = 1 / rrp - 1 / rho
+        if model == "seed":
+            a = 1 / inv_rstar
+            cmp = 4 * a / (math.pi * b) * (c_p / rrp + c_d * abs(1 / rho)) / lam
+            return force * cmp, cmp
+        a = math.sqrt(4 * force * (c_p + c_d) / (math.pi * b * inv_rstar))
+        app = 2 * force / (math.pi * b) * (c_p * (math.log(4 * rrp / a) - 0.5) + c_d * (math.log(4 * L / a) - 0.5))
+        cmp = 2 / (math.pi * b) * (c_p * (math.log(4 * rrp / a) - 1) + c_d * (math.log(4 * L / a) - 1))
+        return app, cmp
+
+    stiffness = read_csv(f"{outdir}/stiffness.csv")
+    pins = read_csv(f"{outdir}/pin_forces.csv")
+    n_phases = int(get("Loading", "Number of phases"))
+    n_torques = len(get("Loading", "Torque").split(","))
+    check(len(stiffness) == n_phases * n_torques, f"{len(stiffness)} states, expected {n_phases * n_torques}")
+    check(len(pins) == len(stiffness) * n_discs * zp, "pin_forces.csv row count")
+
+    by_step = {}
+    for row in pins:
+        by_step.setdefault(int(row["step"]), []).append(row)
+
+    geometry_cache = {}
+    worst = {"clearance_um": 0, "arm_mm": 0, "torque": 0, "approach": 0, "K": 0}
+    for state in stiffness:
+        step = int(state["step"])
+        psi = math.radians(float(state["crank_deg"]))
+        torque = float(state["torque_Nm"])
+        beta = float(state["rotation_rad"])
+        rows = by_step[step]
+        total, k_tan, engaged = 0.0, 0.0, 0
+        for row in rows:
+            d, j = int(row["disc"]), int(row["pin"])
+            key = (round(psi, 12), d, j)
+            if key not in geometry_cache:
+                psi_d = psi + d * math.pi
+                centre = np.array([e * math.cos(psi_d), e * math.sin(psi_d)])
+                pin = rp * np.array([math.cos(2 * math.pi * j / zp), math.sin(2 * math.pi * j / zp)])
+                rot = psi_d / zc
+                v = pin - centre
+                q = np.array([math.cos(rot) * v[0] - math.sin(rot) * v[1], math.sin(rot) * v[0] + math.cos(rot) * v[1]])
+                p, normal, rho = local(closest(q))
+                gap = float(np.dot(q - p, normal)) - rrp
+                arm = float(p[0] * normal[1] - p[1] * normal[0])
+                # normal in the housing frame
+                c, s = math.cos(-rot), math.sin(-rot)
+                nh = np.array([c * normal[0] - s * normal[1], s * normal[0] + c * normal[1]])
+                geometry_cache[key] = (gap, arm, nh, rho, depth(p))
+            gap, arm, nh, rho, L = geometry_cache[key]
+            clearance = float(row["clearance_um"]) * 1e-3
+            worst["clearance_um"] = max(worst["clearance_um"], abs(clearance - gap) * 1e3)
+            worst["arm_mm"] = max(worst["arm_mm"], abs(float(row["arm_mm"]) - arm))
+            fn, fx, fy = float(row["Fn_N"]), float(row["Fx_N"]), float(row["Fy_N"])
+            check(abs(fx + fn * nh[0]) <= 1e-6 * max(fn, 1) and abs(fy + fn * nh[1]) <= 1e-6 * max(fn, 1),
+                  f"step {step} disc {d} pin {j}: force direction")
+            approach = beta * arm - max(gap, 0)
+            if fn > 0:
+                engaged += 1
+                check(approach > -1e-12, f"step {step} disc {d} pin {j}: force without approach")
+                app, cmp = pair(fn, rho, L)
+                worst["approach"] = max(worst["approach"], abs(app - approach) / max(approach, 1e-9))
+                k_tan += arm * arm / cmp
+            else:
+                check(approach < 1e-9, f"step {step} disc {d} pin {j}: approach {approach} without force")
+            total += fn * arm * 1e-3
+        worst["torque"] = max(worst["torque"], abs(total - torque) / abs(torque))
+        check(engaged == int(state["pins_in_contact"]), f"step {step}: pins_in_contact")
+        k_tan *= 1e-3
+        worst["K"] = max(worst["K"], abs(k_tan - float(state["K_tangent_Nm_per_rad"])) / k_tan)
+        check(abs(float(state["K_secant_Nm_per_rad"]) - torque / beta) <= 1e-9 * abs(torque / beta), f"step {step}: K_secant")
+
+    print("largest deviations from the independent computation:", {k: f"{v:.3g}" for k, v in worst.items()})
+    check(worst["clearance_um"] < 1e-6, "clearance differs by more than 1e-6 um")
+    check(worst["arm_mm"] < 1e-7, "arm differs by more than 1e-7 mm")
+    check(worst["torque"] < 1e-10, "torque balance worse than 1e-10")
+    check(worst["approach"] < 1e-6, "pair model force/approach differs by more than 1e-6")
+    check(worst["K"] < 1e-7, "K_tangent differs from sum k l^2 by more than 1e-7")
+
+    axisymmetric = get("Scene", "Load introduction") == "bore" or int(get("Geometry", "Number of crank holes")) == 0
+    if n_phases > 1:
+        first, last = stiffness[:n_torques], stiffness[-n_torques:]
+        period = float(last[0]["crank_deg"]) - float(first[0]["crank_deg"])
+        check(abs(period - 360 / zp) < 1e-9, f"sweep spans {period} deg, not one period 360/zp")
+        if axisymmetric:
+            for a, z in zip(first, last):
+                ka, kz = float(a["K_tangent_Nm_per_rad"]), float(z["K_tangent_Nm_per_rad"])
+                check(abs(ka - kz) <= 1e-9 * ka, f"periodicity of K: {ka} vs {kz}")
+                fa = {(int(r["disc"]), int(r["pin"])): float(r["Fn_N"]) for r in by_step[int(a["step"])]}
+                fz = {(int(r["disc"]), int(r["pin"])): float(r["Fn_N"]) for r in by_step[int(z["step"])]}
+                for (d, j), f in fz.items():
+                    check(abs(f - fa[(d, (j - 1) % zp)]) <= 1e-8 * max(f, 1), f"periodicity of pin {j} force")
+    if failures:
+        print(f"{len(failures)} check(s) failed:")
+        for f in failures[:30]:
+            print("  ", f)
+        return 1
+    print(f"all checks passed ({len(stiffness)} states, {len(pins)} pin rows)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1], sys.argv[2]))
