@@ -421,15 +421,25 @@ namespace cycloid
       const double theta = std::atan2(q[1], q[0]) + delta;
       const double phi0  = -theta * zc;
 
-      const auto distance2 = [&](const double phi) {
-        Tensor<1, 2> p, dp, ddp, n;
-        evaluate(phi, p, dp, ddp, n);
-        return (p - q).norm_square();
+      // Cheap evaluation of the point only, for the coarse sampling.
+      const complex turn   = std::polar(1., -delta);
+      const double  inv_zc = 1. / zc;
+      const complex qz(q[0], q[1]);
+      const auto    distance2 = [&](const double phi) {
+        const complex ea = std::polar(1., -phi * inv_zc);
+        const complex eg = std::polar(1., -i_h * phi);
+        const double  s  = 1. / std::sqrt(s_function(phi));
+        const complex P  = turn * (big_r * ea - prm.eccentricity * eg -
+                                  small_r * s * (ea - k_mod * eg));
+        return std::norm(P - qz);
       };
 
-      const unsigned int n_samples = 48;
-      const double       lo        = phi0 - 1.5 * pi;
-      const double       h         = 3. * pi / n_samples;
+      // The window of 2.5 teeth is wide enough: the polar angle of P(phi)
+      // departs from -phi/zc by less than (e + r)/root radius, i.e. by less
+      // than (e + r) zc / root radius ~ 1.6 rad of phi for the seed case.
+      const unsigned int n_samples = 32;
+      const double       lo        = phi0 - 1.25 * pi;
+      const double       h         = 2.5 * pi / n_samples;
       double             best      = std::numeric_limits<double>::max();
       unsigned int       best_k    = 0;
       for (unsigned int k = 0; k <= n_samples; ++k)
