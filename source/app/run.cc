@@ -28,13 +28,20 @@ namespace cycloid
           case Mode::analytic:
             run_analytic(prm, comm);
             return;
+          case Mode::mesh:
+            if (prm.scene.dimension == 2)
+              run_mesh<2>(prm, comm);
+            else
+              run_mesh<3>(prm, comm);
+            return;
           default:
             AssertThrow(false,
                         dealii::ExcMessage(
                           "Run = " + prm.run.mode_name +
                           " is not available in this version: only Run = "
-                          "analytic is implemented so far (the FE modes "
-                          "are tracked in the project's issues)."));
+                          "analytic and Run = mesh are implemented so far "
+                          "(the FE solves are tracked in the project's "
+                          "issues)."));
         }
     }
 

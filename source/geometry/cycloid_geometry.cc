@@ -126,6 +126,17 @@ namespace cycloid
           "65",
           Double(0),
           "Radius of the circle through the crank-hole centres [mm].");
+        prm.declare_entry("Axial gap between discs",
+                          "2",
+                          Double(0),
+                          "Axial gap between the two discs of a 3D scene "
+                          "[mm].");
+        prm.declare_entry("Housing wall thickness",
+                          "15",
+                          Double(0),
+                          "Radial wall thickness of the pin housing outside "
+                          "the pin circle [mm]; the housing ring spans rp to "
+                          "rp + this, with a groove of radius rrp per pin.");
       }
       prm.leave_subsection();
     }
@@ -269,6 +280,10 @@ namespace cycloid
             << " deg). The scene cannot start from a negative clearance.";
         AssertThrow(worst > -1e-7, ExcMessage(msg.str()));
       }
+
+      AssertThrow(prm.housing_thickness > 1.5 * prm.pin_radius,
+                  ExcMessage("Geometry/Housing wall thickness must exceed 1.5 "
+                             "Pin radius so that the grooves leave a wall."));
 
       // Bore and crank holes must fit inside the root circle.
       const double root = root_radius();

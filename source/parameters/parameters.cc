@@ -259,6 +259,7 @@ namespace cycloid
       LoadingParameters::declare_parameters(prm);
       SceneParameters::declare_parameters(prm);
       analytic::AnalyticParameters::declare_parameters(prm);
+      mesh::MeshParameters::declare_parameters(prm);
     }
 
 
@@ -272,6 +273,7 @@ namespace cycloid
       loading.parse_parameters(prm);
       scene.parse_parameters(prm);
       analytic.parse_parameters(prm);
+      mesh.parse_parameters(prm);
       AssertThrow(scene.pin_core_radius < geometry.pin_radius,
                   dealii::ExcMessage("Scene/Pin core radius must be smaller "
                                      "than Geometry/Pin radius."));

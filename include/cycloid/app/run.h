@@ -21,6 +21,15 @@ namespace cycloid
     void
     run_analytic(const parameters::AllParameters &parameters,
                  const MPI_Comm                   comm);
+
+    /**
+     * `Run = mesh`: generate the scene's mesh (Scene/Dimension), write it
+     * as mesh.pvtu / mesh_boundary.pvtu with body, boundary and rank ids,
+     * print cell counts and quality, and fail on inverted cells.
+     */
+    template <int dim>
+    void
+    run_mesh(const parameters::AllParameters &parameters, const MPI_Comm comm);
   } // namespace app
 } // namespace cycloid
 

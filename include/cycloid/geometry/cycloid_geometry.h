@@ -47,6 +47,11 @@ namespace cycloid
       double crank_hole_radius = 15.0;
       /** Radius of the circle through the crank-hole centres [mm]. */
       double crank_hole_circle_radius = 65.0;
+      /** Axial gap between the two discs of a 3D scene [mm]. */
+      double axial_gap = 2.0;
+      /** Radial wall thickness of the pin housing outside the pin circle
+       * [mm]: the housing ring spans rp ... rp + this. */
+      double housing_thickness = 15.0;
 
       /** Declare the entries of subsection `Geometry`. */
       static void

@@ -5,6 +5,7 @@
 
 #include <cycloid/analytic/analytic_parameters.h>
 #include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/mesh/mesh_parameters.h>
 #include <cycloid/parameters/loading.h>
 #include <cycloid/parameters/material.h>
 #include <cycloid/parameters/run.h>
@@ -29,6 +30,7 @@ namespace cycloid
       LoadingParameters            loading;
       SceneParameters              scene;
       analytic::AnalyticParameters analytic;
+      mesh::MeshParameters mesh;
 
       /** Declare every subsection. */
       static void

@@ -1,0 +1,61 @@
+#ifndef cycloid_mesh_mesh_parameters_h
+#define cycloid_mesh_mesh_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+namespace cycloid
+{
+  namespace mesh
+  {
+    /**
+     * @brief Subsection `Mesh`: element sizes of the gmsh mesh, the axial
+     * layering of 3D scenes and a-priori refinement in deal.II.
+     *
+     * The size field is graded from the contact points (the closest points
+     * between every pin and every disc at the scene's crank angle):
+     * h(x) = min(h_coarse, h_contact + g * max(0, d(x) - r_fine)), with d
+     * the distance to the nearest contact point; additionally h <= h_flank
+     * in the toothed ring of the discs and h <= h_pin in the pins, so that
+     * the coarse mesh follows the curved boundaries.
+     */
+    struct MeshParameters
+    {
+      /** Element size at the contact points [mm]. */
+      double contact_size = 0.25;
+      /** Radius around each contact point meshed with contact_size [mm]. */
+      double fine_radius = 0.3;
+      /** Growth of the element size with the distance from a contact
+       * point [mm/mm]. */
+      double grading = 0.25;
+      /** Largest element size along the tooth flanks [mm]. */
+      double flank_size = 1.0;
+      /** Largest element size in the pins [mm]. */
+      double pin_size = 1.0;
+      /** Largest element size anywhere (disc interior, housing) [mm]. */
+      double coarse_size = 6.0;
+      /** Number of element layers through the width of one disc (3D). */
+      unsigned int axial_layers = 3;
+      /** Number of element layers through the axial gap between the discs
+       * (3D, pins and housing only). */
+      unsigned int gap_layers = 1;
+      /** Global refinements after reading the mesh. */
+      unsigned int global_refinements = 0;
+      /** A-priori refinements of the cells near the contact points. */
+      unsigned int contact_refinements = 0;
+      /** Radius around the contact points refined a priori [mm]. */
+      double contact_refinement_radius = 0.5;
+      /** Write the gmsh mesh (with physical groups) as stage.msh. */
+      bool write_msh = false;
+
+      /** Declare subsection `Mesh`. */
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Read subsection `Mesh`. */
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+  } // namespace mesh
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,120 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/numbers.h>
+
+#include <deal.II/distributed/shared_tria.h>
+
+#include <cycloid/app/run.h>
+#include <cycloid/mesh/stage_mesh.h>
+#include <cycloid/postprocess/mesh_output.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace cycloid
+{
+  namespace app
+  {
+    template <int dim>
+    void
+    run_mesh(const parameters::AllParameters &prm, const MPI_Comm comm)
+    {
+      const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      const std::string &dir = prm.run.output_directory;
+      if (root)
+        std::filesystem::create_directories(dir);
+      dealii::Utilities::MPI::sum(0, comm);
+
+      const double psi =
+        prm.loading.crank_angle_deg * dealii::numbers::PI / 180.;
+      const auto start = std::chrono::steady_clock::now();
+      // Every rank holds the whole (coarse and refined) mesh, partitioned
+      // with METIS; see doc/mesh.md for why not p4est or a fully
+      // distributed triangulation.
+      dealii::parallel::shared::Triangulation<dim> tria(
+        comm,
+        dealii::Triangulation<dim>::limit_level_difference_at_vertices,
+        false,
+        dealii::parallel::shared::Triangulation<dim>::partition_metis);
+      mesh::create_stage_mesh(prm, psi, tria);
+      const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+
+      const auto stats = mesh::body_statistics(tria);
+      postprocess::write_mesh_vtu(tria, dir, "mesh", comm);
+
+      std::ostringstream table;
+      table << "body,material_id,cells,vertices,measure,min_scaled_jacobian,"
+               "max_aspect_ratio\n";
+      double           worst_jacobian = 1;
+      std::string      worst_body;
+      dealii::Point<3> worst_cell;
+      for (const auto &s : stats)
+        {
+          table << mesh::ids::body_name(s.material_id) << ',' << s.material_id
+                << ',' << s.n_cells << ',' << s.n_vertices << ','
+                << std::setprecision(12) << s.measure << ','
+                << s.min_scaled_jacobian << ',' << s.max_aspect_ratio << '\n';
+          if (s.min_scaled_jacobian < worst_jacobian)
+            {
+              worst_jacobian = s.min_scaled_jacobian;
+              worst_body     = mesh::ids::body_name(s.material_id);
+              worst_cell     = s.worst_cell;
+            }
+        }
+      if (root)
+        {
+          std::ofstream(dir + "/mesh.csv") << table.str();
+          unsigned int disc_cells = 0, pin_cells = 0, housing_cells = 0;
+          double       max_aspect = 1;
+          for (const auto &s : stats)
+            {
+              (s.material_id <= 1               ? disc_cells :
+               mesh::ids::is_pin(s.material_id) ? pin_cells :
+                                                  housing_cells) += s.n_cells;
+              max_aspect = std::max(max_aspect, s.max_aspect_ratio);
+            }
+          std::cout << "cycloid-contact: " << dim << "D mesh of "
+                    << prm.scene.n_discs << " disc(s), " << prm.geometry.n_pins
+                    << " pins" << (housing_cells > 0 ? ", housing" : "")
+                    << " at crank angle " << prm.loading.crank_angle_deg
+                    << " deg on "
+                    << dealii::Utilities::MPI::n_mpi_processes(comm)
+                    << " rank(s) (METIS partition)\n"
+                    << "  cells: " << tria.n_active_cells() << " (discs "
+                    << disc_cells << ", pins " << pin_cells << ", housing "
+                    << housing_cells << "), vertices " << tria.n_vertices()
+                    << "\n  quality: min scaled Jacobian " << worst_jacobian
+                    << " (" << worst_body << ", cell at " << worst_cell
+                    << "), max aspect ratio " << max_aspect
+                    << "\n  generated in " << seconds << " s; written " << dir
+                    << "/mesh.pvtu, "
+                    << "mesh_boundary.pvtu, mesh.csv" << std::endl;
+        }
+      AssertThrow(
+        worst_jacobian > 1e-3,
+        dealii::ExcMessage(
+          "mesh: inverted or degenerate cells in " + worst_body +
+          " (worst at " + dealii::Utilities::to_string(worst_cell[0]) + ", " +
+          dealii::Utilities::to_string(worst_cell[1]) + ", " +
+          dealii::Utilities::to_string(worst_cell[2]) + " mm)" +
+          " (minimum scaled Jacobian " + std::to_string(worst_jacobian) +
+          "). Reduce the Mesh element sizes or the Size grading; "
+          "the mesh was written to " +
+          dir +
+          "/mesh.pvtu for "
+          "inspection."));
+    }
+
+    template void
+    run_mesh<2>(const parameters::AllParameters &, const MPI_Comm);
+    template void
+    run_mesh<3>(const parameters::AllParameters &, const MPI_Comm);
+  } // namespace app
+} // namespace cycloid

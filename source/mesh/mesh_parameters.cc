@@ -1,0 +1,107 @@
+#include <deal.II/base/exceptions.h>
+
+#include <cycloid/mesh/mesh_parameters.h>
+
+namespace cycloid
+{
+  namespace mesh
+  {
+    void
+    MeshParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii::Patterns;
+      prm.enter_subsection("Mesh");
+      {
+        prm.declare_entry("Contact element size",
+                          "0.25",
+                          Double(1e-4),
+                          "Element size at the contact points (closest "
+                          "points of every pin and disc) [mm].");
+        prm.declare_entry("Fine zone radius",
+                          "0.3",
+                          Double(0),
+                          "Radius around each contact point meshed with the "
+                          "contact element size [mm].");
+        prm.declare_entry("Size grading",
+                          "0.25",
+                          Double(0.01, 10),
+                          "Growth of the element size with the distance from "
+                          "the nearest contact point [mm per mm].");
+        prm.declare_entry("Flank element size",
+                          "1",
+                          Double(1e-4),
+                          "Largest element size in the toothed ring of a "
+                          "disc [mm]; keeps the coarse mesh on the profile.");
+        prm.declare_entry("Pin element size",
+                          "1",
+                          Double(1e-4),
+                          "Largest element size in a pin [mm].");
+        prm.declare_entry("Coarse element size",
+                          "6",
+                          Double(1e-4),
+                          "Largest element size anywhere (disc interior, "
+                          "housing) [mm].");
+        prm.declare_entry("Axial layers per disc",
+                          "3",
+                          Integer(1, 1000),
+                          "3D: element layers through the width of one disc "
+                          "[-].");
+        prm.declare_entry("Axial layers in the gap",
+                          "1",
+                          Integer(1, 1000),
+                          "3D: element layers of pins and housing across the "
+                          "axial gap between the discs [-].");
+        prm.declare_entry("Global refinements",
+                          "0",
+                          Integer(0, 10),
+                          "Global refinements of the gmsh mesh in deal.II "
+                          "[-].");
+        prm.declare_entry("Contact refinements",
+                          "0",
+                          Integer(0, 20),
+                          "A-priori refinements of the cells within Contact "
+                          "refinement radius of a contact point [-].");
+        prm.declare_entry("Contact refinement radius",
+                          "0.5",
+                          Double(0),
+                          "Radius of the a-priori contact refinement [mm].");
+        prm.declare_entry("Write msh",
+                          "false",
+                          Bool(),
+                          "Also write the gmsh mesh with its physical groups "
+                          "as stage.msh in the output directory.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    MeshParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh");
+      {
+        contact_size              = prm.get_double("Contact element size");
+        fine_radius               = prm.get_double("Fine zone radius");
+        grading                   = prm.get_double("Size grading");
+        flank_size                = prm.get_double("Flank element size");
+        pin_size                  = prm.get_double("Pin element size");
+        coarse_size               = prm.get_double("Coarse element size");
+        axial_layers              = prm.get_integer("Axial layers per disc");
+        gap_layers                = prm.get_integer("Axial layers in the gap");
+        global_refinements        = prm.get_integer("Global refinements");
+        contact_refinements       = prm.get_integer("Contact refinements");
+        contact_refinement_radius = prm.get_double("Contact refinement radius");
+        write_msh                 = prm.get_bool("Write msh");
+      }
+      prm.leave_subsection();
+      AssertThrow(contact_size <= flank_size && flank_size <= coarse_size,
+                  dealii::ExcMessage(
+                    "Mesh: need Contact element size <= Flank element size "
+                    "<= Coarse element size."));
+      AssertThrow(contact_size <= pin_size,
+                  dealii::ExcMessage("Mesh: need Contact element size <= Pin "
+                                     "element size."));
+    }
+  } // namespace mesh
+} // namespace cycloid
