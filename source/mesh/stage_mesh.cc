@@ -146,14 +146,18 @@ namespace cycloid
       /** Size field of design: graded from the contact points. */
       struct SizeField
       {
+        explicit SizeField(const MeshParameters &m)
+          : m(m)
+        {}
+
         const MeshParameters         &m;
         std::vector<dealii::Point<2>> points;
-        std::map<int, int>            surface_body; // surface tag -> body kind
         std::vector<dealii::Point<2>> disc_centres;
-        double                        ring_radius; // toothed ring starts
+        double                        ring_radius = 0; // toothed ring starts
         std::vector<dealii::Point<2>> pin_centres;
-        double                        pin_radius;
-        double                        pin_circle_radius;
+        double                        pin_radius        = 0;
+        double                        pin_circle_radius = 0;
+        std::vector<Circle>           holes;
 
         /** gmsh entities of the pins: (dim, tag). */
         std::set<std::pair<int, int>> pin_entities;
@@ -168,17 +172,22 @@ namespace cycloid
                    const double x,
                    const double y) const
         {
+          // Discs and pins are split once into quadrilaterals after meshing
+          // (see below): gmsh meshes them at twice the size. The housing is
+          // structured; its node counts are set directly.
+          const double sc = 2.;
           if (dim == 2 && core_surfaces.count(tag))
-            return core_size;
+            return sc * core_size;
           if (pin_entities.count(std::make_pair(dim, tag)))
             {
               // In a pin: graded from the core circle's segments outwards.
               double d_pin = std::numeric_limits<double>::max();
               for (const auto &c : pin_centres)
                 d_pin = std::min(d_pin, dealii::Point<2>(x, y).distance(c));
-              return std::min(size(x, y), core_size + (d_pin - core_radius));
+              return sc *
+                     std::min(size(x, y), core_size + (d_pin - core_radius));
             }
-          return size(x, y);
+          return sc * size(x, y);
         }
 
         double
@@ -205,6 +214,10 @@ namespace cycloid
           for (const auto &c : disc_centres)
             if (p.distance(c) > ring_radius)
               h = std::min(h, m.flank_size);
+          // Bore and crank holes: 0.15 of the radius (a chord of 8.6 deg).
+          for (const auto &c : holes)
+            if (std::abs(p.distance(c.centre) - c.radius) < 0.3 * c.radius)
+              h = std::min(h, 0.15 * c.radius);
           if (d_pin < 2. * pin_radius)
             h = std::min(h, m.pin_size);
           return h;
@@ -440,17 +453,51 @@ namespace cycloid
 
         geo::synchronize();
 
+        const auto circles_of = [&](const dealii::types::material_id m) {
+          std::vector<Circle> circles;
+          if (ids::is_pin(m))
+            {
+              const auto c = geo_data.pin_centre(m - 100);
+              circles = {{c, g.pin_radius}, {c, prm.scene.pin_core_radius}};
+            }
+          else if (m <= 1)
+            {
+              circles.push_back({geo_data.disc_centre(m, psi), g.bore_radius});
+              for (unsigned int k = 0; k < g.n_crank_holes; ++k)
+                {
+                  const double a = 2. * pi * k / g.n_crank_holes;
+                  circles.push_back(
+                    {geo_data.to_housing(
+                       m,
+                       psi,
+                       dealii::Point<2>(
+                         g.crank_hole_circle_radius * std::cos(a),
+                         g.crank_hole_circle_radius * std::sin(a))),
+                     g.crank_hole_radius});
+                }
+            }
+          else
+            {
+              circles = {{dealii::Point<2>(), rp},
+                         {dealii::Point<2>(), rp + g.housing_thickness}};
+              for (unsigned int j = 0; j < zp; ++j)
+                circles.push_back({geo_data.pin_centre(j), g.pin_radius});
+            }
+          return circles;
+        };
+
         // Size field.
-        SizeField field{m,
-                        contact_points(geo_data, prm.scene.n_discs, psi),
-                        {},
-                        {},
-                        geo_data.root_radius() - 2. * g.pin_radius,
-                        {},
-                        g.pin_radius,
-                        rp};
+        SizeField field(m);
+        field.points      = contact_points(geo_data, prm.scene.n_discs, psi);
+        field.ring_radius = geo_data.root_radius() - 2. * g.pin_radius;
+        field.pin_radius  = g.pin_radius;
+        field.pin_circle_radius = rp;
         for (unsigned int d = 0; d < prm.scene.n_discs; ++d)
-          field.disc_centres.push_back(geo_data.disc_centre(d, psi));
+          {
+            field.disc_centres.push_back(geo_data.disc_centre(d, psi));
+            for (const Circle &c : circles_of(d))
+              field.holes.push_back(c);
+          }
         for (unsigned int j = 0; j < zp; ++j)
           field.pin_centres.push_back(geo_data.pin_centre(j));
         field.pin_entities  = pin_entities;
@@ -487,43 +534,13 @@ namespace cycloid
             gmsh::model::setPhysicalName(2, tag, ids::body_name(body.material));
           }
 
-        // Blossom recombination gives quadrilaterals where the parity of a
-        // surface's boundary allows; if it leaves triangles in a body, every
-        // element of that body is split once into quadrilaterals (edge
-        // midpoints and centroid), which is conforming and keeps the curved
-        // boundaries (at four times the cells of that body).
-        const auto circles_of = [&](const dealii::types::material_id m) {
-          std::vector<Circle> circles;
-          if (ids::is_pin(m))
-            {
-              const auto c = geo_data.pin_centre(m - 100);
-              circles = {{c, g.pin_radius}, {c, prm.scene.pin_core_radius}};
-            }
-          else if (m <= 1)
-            {
-              circles.push_back({geo_data.disc_centre(m, psi), g.bore_radius});
-              for (unsigned int k = 0; k < g.n_crank_holes; ++k)
-                {
-                  const double a = 2. * pi * k / g.n_crank_holes;
-                  circles.push_back(
-                    {geo_data.to_housing(
-                       m,
-                       psi,
-                       dealii::Point<2>(
-                         g.crank_hole_circle_radius * std::cos(a),
-                         g.crank_hole_circle_radius * std::sin(a))),
-                     g.crank_hole_radius});
-                }
-            }
-          else
-            {
-              circles = {{dealii::Point<2>(), rp},
-                         {dealii::Point<2>(), rp + g.housing_thickness}};
-              for (unsigned int j = 0; j < zp; ++j)
-                circles.push_back({geo_data.pin_centre(j), g.pin_radius});
-            }
-          return circles;
-        };
+        // Blossom recombination gives quadrilaterals where the parity and
+        // shape of a surface allow, but may leave a few triangles, and where
+        // it does changes with the crank angle. To get quadrilaterals only,
+        // deterministically, every element of the discs and pins (meshed at
+        // twice the size) is split once into quadrilaterals (edge midpoints
+        // and centroid): conforming, and the midpoints of curved boundary
+        // edges go onto the exact circles (the flank is projected later).
 
         gmsh::model::mesh::generate(2);
         if (!msh_file.empty())
@@ -578,7 +595,9 @@ namespace cycloid
                       }
                   }
               }
-            if (triangles)
+            AssertThrow(!triangles || body.material != ids::housing,
+                        dealii::ExcInternalError());
+            if (body.material != ids::housing)
               {
                 // Edges of the mesh on the body's circles: their midpoints
                 // go onto the circle.
