@@ -6,7 +6,6 @@
 #include <deal.II/base/numbers.h>
 
 #include <deal.II/distributed/shared_tria.h>
-
 #include <deal.II/grid/tria.h>
 
 #include <cycloid/geometry/cycloid_geometry.h>
@@ -32,14 +31,14 @@ namespace
   coarse_scene(const unsigned int dim, const unsigned int n_discs)
   {
     parameters::AllParameters p;
-    p.scene.dimension    = dim;
-    p.scene.n_discs      = n_discs;
-    p.mesh.contact_size  = 1.0;
-    p.mesh.flank_size    = 1.0;
-    p.mesh.pin_size      = 1.5;
-    p.mesh.coarse_size   = 10.0;
-    p.mesh.axial_layers  = 1;
-    p.mesh.gap_layers    = 1;
+    p.scene.dimension   = dim;
+    p.scene.n_discs     = n_discs;
+    p.mesh.contact_size = 1.0;
+    p.mesh.flank_size   = 1.0;
+    p.mesh.pin_size     = 1.5;
+    p.mesh.coarse_size  = 10.0;
+    p.mesh.axial_layers = 1;
+    p.mesh.gap_layers   = 1;
     return p;
   }
 
@@ -120,9 +119,9 @@ TEST(Mesh, DiscAreaMatchesTheExactProfileAndConvergesAtSecondOrder)
   // snapped to a faceted curve would stall it.
   // Default element sizes (the judged configuration), one disc.
   parameters::AllParameters p;
-  p.scene.n_discs    = 1;
-  const double exact = exact_disc_area(p);
-  dealii::Triangulation<2>  tria;
+  p.scene.n_discs                = 1;
+  const double             exact = exact_disc_area(p);
+  dealii::Triangulation<2> tria;
   mesh::create_stage_mesh(p, 0., tria);
   std::vector<double> errors;
   for (unsigned int level = 0; level < 3; ++level)
@@ -149,9 +148,9 @@ TEST(Mesh, RefinedVerticesLieOnTheExactCurves)
   // (modified) cycloid profile and every pin-surface vertex on its pin's
   // cylinder, to 1e-6 mm (design: the facets of a coarse mesh must not
   // decide the answer).
-  parameters::AllParameters p = coarse_scene(2, 1);
-  p.geometry.delta_pin_circle_radius = -0.01;
-  p.geometry.delta_pin_radius        = 0.01;
+  parameters::AllParameters p         = coarse_scene(2, 1);
+  p.geometry.delta_pin_circle_radius  = -0.01;
+  p.geometry.delta_pin_radius         = 0.01;
   const double                    psi = 0.07;
   const geometry::CycloidGeometry geo(p.geometry);
   dealii::Triangulation<2>        tria;
@@ -159,7 +158,7 @@ TEST(Mesh, RefinedVerticesLieOnTheExactCurves)
   tria.refine_global(3);
 
   double       worst_flank = 0, worst_pin = 0, worst_hole = 0;
-  unsigned int n_flank     = 0;
+  unsigned int n_flank = 0;
   for (const auto &cell : tria.active_cell_iterators())
     for (const unsigned int f : cell->face_indices())
       {
@@ -171,21 +170,20 @@ TEST(Mesh, RefinedVerticesLieOnTheExactCurves)
             const dealii::Point<2> x = face->vertex(v);
             if (face->boundary_id() == ids::flank)
               {
-                worst_flank = std::max(
-                  worst_flank,
-                  std::abs(geo.signed_distance(geo.to_disc(0, psi, x))));
+                worst_flank = std::max(worst_flank,
+                                       std::abs(geo.signed_distance(
+                                         geo.to_disc(0, psi, x))));
                 ++n_flank;
               }
             else if (face->boundary_id() == ids::pin_surface)
-              worst_pin = std::max(
-                worst_pin,
-                std::abs(
-                  x.distance(geo.pin_centre(cell->material_id() - 100)) -
-                  3.));
+              worst_pin = std::max(worst_pin,
+                                   std::abs(x.distance(geo.pin_centre(
+                                              cell->material_id() - 100)) -
+                                            3.));
             else if (face->boundary_id() == ids::bore)
-              worst_hole = std::max(
-                worst_hole,
-                std::abs(x.distance(geo.disc_centre(0, psi)) - 25.));
+              worst_hole =
+                std::max(worst_hole,
+                         std::abs(x.distance(geo.disc_centre(0, psi)) - 25.));
           }
       }
   EXPECT_GT(n_flank, 10000u);
@@ -220,9 +218,9 @@ TEST(Mesh, ThreeDimensionalTwoDiscSceneWithHousing)
         if (cell->face(f)->at_boundary())
           kinds.insert(cell->face(f)->boundary_id());
     }
-  EXPECT_EQ(kinds,
-            (std::set<dealii::types::boundary_id>{1, 2, 3, 4, 5, 6, 7, 8, 9,
-                                                  10}));
+  EXPECT_EQ(
+    kinds,
+    (std::set<dealii::types::boundary_id>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10}));
   // Pins span both discs and the gap.
   EXPECT_NEAR(z_max_pin, 2. * 16. + 2., 1e-12);
   // Each disc's volume is its section times the width.

@@ -30,7 +30,7 @@ namespace cycloid
       LoadingParameters            loading;
       SceneParameters              scene;
       analytic::AnalyticParameters analytic;
-      mesh::MeshParameters mesh;
+      mesh::MeshParameters         mesh;
 
       /** Declare every subsection. */
       static void
