@@ -71,8 +71,23 @@ namespace cycloid
       if (root)
         {
           std::ofstream(dir + "/mesh.csv") << table.str();
-          unsigned int disc_cells = 0, pin_cells = 0, housing_cells = 0;
-          double       max_aspect = 1;
+          unsigned int       disc_cells = 0, pin_cells = 0, housing_cells = 0;
+          unsigned int       pin_min = ~0u, pin_max = 0;
+          double             max_aspect = 1;
+          std::ostringstream per_body;
+          for (const auto &s : stats)
+            if (mesh::ids::is_pin(s.material_id))
+              {
+                pin_min = std::min(pin_min, s.n_cells);
+                pin_max = std::max(pin_max, s.n_cells);
+              }
+            else
+              per_body << "\n    " << mesh::ids::body_name(s.material_id)
+                       << ": " << s.n_cells << " cells, " << s.n_vertices
+                       << " vertices, min scaled Jacobian "
+                       << s.min_scaled_jacobian;
+          per_body << "\n    each pin: " << pin_min << " to " << pin_max
+                   << " cells";
           for (const auto &s : stats)
             {
               (s.material_id <= 1               ? disc_cells :
@@ -90,9 +105,9 @@ namespace cycloid
                     << "  cells: " << tria.n_active_cells() << " (discs "
                     << disc_cells << ", pins " << pin_cells << ", housing "
                     << housing_cells << "), vertices " << tria.n_vertices()
-                    << "\n  quality: min scaled Jacobian " << worst_jacobian
-                    << " (" << worst_body << ", cell at " << worst_cell
-                    << "), max aspect ratio " << max_aspect
+                    << per_body.str() << "\n  quality: min scaled Jacobian "
+                    << worst_jacobian << " (" << worst_body << ", cell at "
+                    << worst_cell << "), max aspect ratio " << max_aspect
                     << "\n  generated in " << seconds << " s; written " << dir
                     << "/mesh.pvtu, "
                     << "mesh_boundary.pvtu, mesh.csv" << std::endl;
