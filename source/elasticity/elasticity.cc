@@ -1,0 +1,274 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_solver.h>
+
+#include <cycloid/elasticity/elasticity.h>
+
+#include <Teuchos_ParameterList.hpp>
+
+namespace cycloid
+{
+  namespace elasticity
+  {
+    template <int dim>
+    LinearElasticity<dim>::LinearElasticity(
+      const dealii::parallel::TriangulationBase<dim> &triangulation,
+      const unsigned int                              degree,
+      const std::map<dealii::types::material_id, parameters::ElasticMaterial>
+        &materials)
+      : triangulation(triangulation)
+      , comm(triangulation.get_communicator())
+      , fe(dealii::FE_Q<dim>(degree), dim)
+      , map(std::make_unique<dealii::MappingQ<dim>>(degree))
+      , dofs(triangulation)
+      , materials(materials)
+    {}
+
+
+
+    template <int dim>
+    void
+    LinearElasticity<dim>::setup_system(
+      const std::function<void(dealii::AffineConstraints<double> &)> &constrain)
+    {
+      dofs.distribute_dofs(fe);
+      locally_owned = dofs.locally_owned_dofs();
+      dealii::DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant);
+
+      all_constraints.clear();
+      all_constraints.reinit(locally_relevant);
+      dealii::DoFTools::make_hanging_node_constraints(dofs, all_constraints);
+      constrain(all_constraints);
+      all_constraints.close();
+
+      dealii::DynamicSparsityPattern dsp(locally_relevant);
+      dealii::DoFTools::make_sparsity_pattern(dofs,
+                                              dsp,
+                                              all_constraints,
+                                              false);
+      dealii::SparsityTools::distribute_sparsity_pattern(dsp,
+                                                         locally_owned,
+                                                         comm,
+                                                         locally_relevant);
+      system_matrix.reinit(locally_owned, locally_owned, dsp, comm);
+      system_rhs.reinit(locally_owned, comm);
+      locally_relevant_solution.reinit(locally_owned, locally_relevant, comm);
+    }
+
+
+
+    template <int dim>
+    void
+    LinearElasticity<dim>::assemble(
+      const std::map<dealii::types::boundary_id, const dealii::Function<dim> *>
+        &tractions)
+    {
+      system_matrix = 0;
+      system_rhs    = 0;
+      const dealii::QGauss<dim>     quadrature(fe.degree + 1);
+      const dealii::QGauss<dim - 1> face_quadrature(fe.degree + 1);
+      dealii::FEValues<dim>         fe_values(*map,
+                                      fe,
+                                      quadrature,
+                                      dealii::update_gradients |
+                                        dealii::update_JxW_values);
+      dealii::FEFaceValues<dim>     fe_face_values(
+        *map,
+        fe,
+        face_quadrature,
+        dealii::update_values | dealii::update_quadrature_points |
+          dealii::update_JxW_values);
+      const unsigned int         dofs_per_cell = fe.n_dofs_per_cell();
+      dealii::FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
+      dealii::Vector<double>     cell_rhs(dofs_per_cell);
+      std::vector<dealii::types::global_dof_index> indices(dofs_per_cell);
+      const dealii::FEValuesExtractors::Vector     u(0);
+      std::vector<dealii::SymmetricTensor<2, dim>> eps(dofs_per_cell);
+      std::vector<double>                          div(dofs_per_cell);
+      dealii::Vector<double>                       t(dim);
+
+      for (const auto &cell : dofs.active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          const auto it = materials.find(cell->material_id());
+          AssertThrow(it != materials.end(),
+                      dealii::ExcMessage("elasticity: no material for body " +
+                                         std::to_string(cell->material_id())));
+          const double E      = it->second.youngs_modulus,
+                       nu     = it->second.poissons_ratio;
+          const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+          const double mu     = E / (2 * (1 + nu));
+
+          cell_matrix = 0;
+          cell_rhs    = 0;
+          fe_values.reinit(cell);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  eps[i] = fe_values[u].symmetric_gradient(i, q);
+                  div[i] = fe_values[u].divergence(i, q);
+                }
+              const double w = fe_values.JxW(q);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                for (unsigned int j = 0; j <= i; ++j)
+                  cell_matrix(i, j) +=
+                    (2 * mu * (eps[i] * eps[j]) + lambda * div[i] * div[j]) * w;
+            }
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
+              cell_matrix(i, j) = cell_matrix(j, i);
+
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary())
+              {
+                const auto tr = tractions.find(cell->face(f)->boundary_id());
+                if (tr == tractions.end())
+                  continue;
+                fe_face_values.reinit(cell, f);
+                for (const unsigned int q :
+                     fe_face_values.quadrature_point_indices())
+                  {
+                    tr->second->vector_value(fe_face_values.quadrature_point(q),
+                                             t);
+                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                      {
+                        const unsigned int c =
+                          fe.system_to_component_index(i).first;
+                        cell_rhs(i) += fe_face_values.shape_value(i, q) * t(c) *
+                                       fe_face_values.JxW(q);
+                      }
+                  }
+              }
+          cell->get_dof_indices(indices);
+          all_constraints.distribute_local_to_global(
+            cell_matrix, cell_rhs, indices, system_matrix, system_rhs);
+        }
+      system_matrix.compress(dealii::VectorOperation::add);
+      system_rhs.compress(dealii::VectorOperation::add);
+    }
+
+
+
+    template <int dim>
+    std::unique_ptr<Epetra_MultiVector>
+    LinearElasticity<dim>::rigid_body_modes(const bool with_rotations) const
+    {
+      const unsigned int n_modes =
+        dim + (with_rotations ? dim * (dim - 1) / 2 : 0);
+      auto modes = std::make_unique<Epetra_MultiVector>(
+        system_matrix.trilinos_matrix().RowMap(), n_modes);
+      std::map<dealii::types::global_dof_index, dealii::Point<dim>> points;
+      dealii::DoFTools::map_dofs_to_support_points(*map, dofs, points);
+      std::vector<dealii::types::global_dof_index> indices(
+        fe.n_dofs_per_cell());
+      for (const auto &cell : dofs.active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          cell->get_dof_indices(indices);
+          for (unsigned int i = 0; i < indices.size(); ++i)
+            {
+              if (!locally_owned.is_element(indices[i]))
+                continue;
+              const unsigned int c = fe.system_to_component_index(i).first;
+              const auto row       = locally_owned.index_within_set(indices[i]);
+              const dealii::Point<dim> &x = points.at(indices[i]);
+              (*modes)[c][row]            = 1.;
+              if (!with_rotations)
+                continue;
+              // Rotation about z: (-y, x); in 3D also about x and y.
+              if (c == 0)
+                (*modes)[dim][row] = -x[1];
+              if (c == 1)
+                (*modes)[dim][row] = x[0];
+              if (dim == 3)
+                {
+                  if (c == 1)
+                    (*modes)[dim + 1][row] = -x[dim - 1];
+                  if (c == dim - 1)
+                    (*modes)[dim + 1][row] = x[1];
+                  if (c == dim - 1)
+                    (*modes)[dim + 2][row] = -x[0];
+                  if (c == 0)
+                    (*modes)[dim + 2][row] = x[dim - 1];
+                }
+            }
+        }
+      return modes;
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    LinearElasticity<dim>::solve(const Solver solver, const double tolerance)
+    {
+      dealii::TrilinosWrappers::MPI::Vector x(locally_owned, comm);
+      unsigned int                          iterations = 0;
+      if (solver == Solver::direct)
+        {
+          dealii::SolverControl                  control(1, 0);
+          dealii::TrilinosWrappers::SolverDirect direct(control);
+          direct.solve(system_matrix, x, system_rhs);
+        }
+      else
+        {
+          // ML with a user-given near-null space (deal.II 9.4 has no
+          // extract_rigid_body_modes): translations and, unless asked
+          // otherwise, rotations.
+          dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
+          data.elliptic              = true;
+          data.higher_order_elements = fe.degree > 1;
+          data.smoother_sweeps       = 2;
+          data.aggregation_threshold = 0.02;
+          Teuchos::ParameterList              parameters;
+          std::unique_ptr<Epetra_MultiVector> unused;
+          data.set_parameters(parameters, unused, system_matrix);
+          null_space = rigid_body_modes(solver == Solver::cg_amg);
+          parameters.set("null space: type", "pre-computed");
+          parameters.set("null space: dimension", null_space->NumVectors());
+          parameters.set("null space: vectors", null_space->Values());
+          amg.initialize(system_matrix, parameters);
+
+          dealii::SolverControl control(
+            std::max<unsigned int>(1000, system_rhs.size() / 10),
+            tolerance * system_rhs.l2_norm());
+          dealii::SolverCG<dealii::TrilinosWrappers::MPI::Vector> cg(control);
+          try
+            {
+              cg.solve(system_matrix, x, system_rhs, amg);
+            }
+          catch (const dealii::SolverControl::NoConvergence &e)
+            {
+              AssertThrow(false,
+                          dealii::ExcMessage(
+                            "elasticity: CG+AMG did not converge in " +
+                            std::to_string(e.last_step) +
+                            " iterations (residual " +
+                            std::to_string(e.last_residual) +
+                            "); is a body unconstrained?"));
+            }
+          iterations = control.last_step();
+        }
+      all_constraints.distribute(x);
+      locally_relevant_solution = x;
+      return iterations;
+    }
+
+
+
+    template class LinearElasticity<2>;
+    template class LinearElasticity<3>;
+  } // namespace elasticity
+} // namespace cycloid

@@ -1,0 +1,190 @@
+// Linear elasticity against Lame's closed form: a thick cylinder (inner
+// radius 0.2, outer 1.0, E = 1e9, nu = 0.2; design.md's ring dimensions)
+// under internal pressure in plane strain, on a quarter with symmetry
+// conditions. Checks the displacement error and its convergence rate for Q1
+// and Q2, the CG+AMG solution against the direct solver, and (run on 2 MPI
+// ranks too) that the answer does not depend on the partition.
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <cycloid/elasticity/elasticity.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+using namespace cycloid;
+
+namespace
+{
+  constexpr double ri = 0.2, ro = 1.0, E = 1e9, nu = 0.2, p = 1e6;
+
+  /** Lame: u_r = (1+nu)/E ((1-2nu) A r + B / r), plane strain. */
+  class Exact : public dealii::Function<2>
+  {
+  public:
+    Exact()
+      : dealii::Function<2>(2)
+    {}
+    void
+    vector_value(const dealii::Point<2> &x,
+                 dealii::Vector<double> &v) const override
+    {
+      const double A  = p * ri * ri / (ro * ro - ri * ri);
+      const double B  = p * ri * ri * ro * ro / (ro * ro - ri * ri);
+      const double r  = x.norm();
+      const double ur = (1 + nu) / E * ((1 - 2 * nu) * A * r + B / r);
+      v(0)            = ur * x[0] / r;
+      v(1)            = ur * x[1] / r;
+    }
+  };
+
+  /** Pressure on the inner surface: traction -p n, n the outer normal of
+   * the body there, i.e. pointing to the axis: t = p x / r. */
+  class InnerPressure : public dealii::Function<2>
+  {
+  public:
+    InnerPressure()
+      : dealii::Function<2>(2)
+    {}
+    void
+    vector_value(const dealii::Point<2> &x,
+                 dealii::Vector<double> &v) const override
+    {
+      v(0) = p * x[0] / x.norm();
+      v(1) = p * x[1] / x.norm();
+    }
+  };
+
+  struct Result
+  {
+    double       error;
+    unsigned int iterations;
+    double       u_inner;
+  };
+
+  Result
+  solve(const unsigned int                            degree,
+        const unsigned int                            refinements,
+        const elasticity::LinearElasticity<2>::Solver solver)
+  {
+    dealii::parallel::shared::Triangulation<2> tria(
+      MPI_COMM_WORLD,
+      dealii::Triangulation<2>::none,
+      false,
+      dealii::parallel::shared::Triangulation<2>::partition_metis);
+    dealii::GridGenerator::quarter_hyper_shell(
+      tria, dealii::Point<2>(), ri, ro, 0, true);
+    tria.refine_global(refinements);
+    // Symmetry planes by geometry: x = 0 -> 2, y = 0 -> 3.
+    for (const auto &cell : tria.active_cell_iterators())
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary())
+          {
+            const auto c = cell->face(f)->center();
+            if (std::abs(c[0]) < 1e-12)
+              cell->face(f)->set_boundary_id(2);
+            else if (std::abs(c[1]) < 1e-12)
+              cell->face(f)->set_boundary_id(3);
+          }
+    elasticity::LinearElasticity<2> problem(tria,
+                                            degree,
+                                            {{0, {E, nu, 7850.}}});
+    problem.setup_system([&](dealii::AffineConstraints<double> &c) {
+      const dealii::Functions::ZeroFunction<2> zero(2);
+      dealii::VectorTools::interpolate_boundary_values(
+        problem.mapping(),
+        problem.dof_handler(),
+        2,
+        zero,
+        c,
+        dealii::ComponentMask(std::vector<bool>{true, false}));
+      dealii::VectorTools::interpolate_boundary_values(
+        problem.mapping(),
+        problem.dof_handler(),
+        3,
+        zero,
+        c,
+        dealii::ComponentMask(std::vector<bool>{false, true}));
+    });
+    const InnerPressure pressure;
+    problem.assemble({{0, &pressure}});
+    Result result;
+    result.iterations = problem.solve(solver, 1e-12);
+
+    dealii::Vector<float> cell_errors(tria.n_active_cells());
+    const Exact           exact;
+    dealii::VectorTools::integrate_difference(problem.mapping(),
+                                              problem.dof_handler(),
+                                              problem.solution(),
+                                              exact,
+                                              cell_errors,
+                                              dealii::QGauss<2>(degree + 2),
+                                              dealii::VectorTools::L2_norm);
+    result.error =
+      dealii::VectorTools::compute_global_error(tria,
+                                                cell_errors,
+                                                dealii::VectorTools::L2_norm);
+    // Radial displacement at the inner radius on the x axis.
+    dealii::Vector<double> value(2);
+    dealii::Vector<double> exact_value(2);
+    exact.vector_value(dealii::Point<2>(ri, 0), exact_value);
+    result.u_inner = exact_value(0);
+    return result;
+  }
+} // namespace
+
+
+
+TEST(Elasticity, LameCylinderConvergesAtTheOptimalRate)
+{
+  for (const unsigned int degree : {1u, 2u})
+    {
+      std::vector<double> errors;
+      for (unsigned int level = 2; level <= 4; ++level)
+        errors.push_back(
+          solve(degree, level, elasticity::LinearElasticity<2>::Solver::cg_amg)
+            .error);
+      const double rate1 = std::log2(errors[0] / errors[1]);
+      const double rate2 = std::log2(errors[1] / errors[2]);
+      std::cout << "Q" << degree << " L2 errors " << errors[0] << ", "
+                << errors[1] << ", " << errors[2] << "; rates " << rate1 << ", "
+                << rate2 << std::endl;
+      // L2 error of Q_p: O(h^(p+1)).
+      EXPECT_GT(rate2, degree + 1 - 0.2);
+      EXPECT_LT(rate2, degree + 1 + 0.3);
+    }
+  // And the error is small against the displacement itself: relative to
+  // u(ri) sqrt(area of the quarter ring).
+  const Result r = solve(2, 4, elasticity::LinearElasticity<2>::Solver::cg_amg);
+  const double scale = r.u_inner * std::sqrt(0.25 * M_PI * (ro * ro - ri * ri));
+  EXPECT_LT(r.error / scale, 1e-4);
+}
+
+
+
+TEST(Elasticity, AmgAndDirectSolversAgree)
+{
+  // Fine enough (about 2e4 DoFs) that ML builds a real hierarchy.
+  const Result amg =
+    solve(1, 6, elasticity::LinearElasticity<2>::Solver::cg_amg);
+  const Result direct =
+    solve(1, 6, elasticity::LinearElasticity<2>::Solver::direct);
+  const Result translations =
+    solve(1,
+          6,
+          elasticity::LinearElasticity<2>::Solver::cg_amg_translations_only);
+  EXPECT_NEAR(amg.error, direct.error, 1e-6 * direct.error);
+  EXPECT_NEAR(translations.error, direct.error, 1e-6 * direct.error);
+  std::cout << "CG iterations with rigid-body modes " << amg.iterations
+            << ", with translations only " << translations.iterations
+            << std::endl;
+  EXPECT_GT(amg.iterations, 1u);
+  EXPECT_LT(amg.iterations, 60u);
+}
