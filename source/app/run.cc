@@ -7,6 +7,7 @@
 
 #include <cycloid/analytic/stage_model.h>
 #include <cycloid/app/run.h>
+#include <cycloid/contact/quasi_static.h>
 #include <cycloid/postprocess/result_writer.h>
 
 #include <algorithm>
@@ -28,6 +29,9 @@ namespace cycloid
           case Mode::analytic:
             run_analytic(prm, comm);
             return;
+          case Mode::quasi_static:
+            run_quasi_static(prm, comm);
+            return;
           case Mode::mesh:
             if (prm.scene.dimension == 2)
               run_mesh<2>(prm, comm);
@@ -38,10 +42,51 @@ namespace cycloid
             AssertThrow(false,
                         dealii::ExcMessage(
                           "Run = " + prm.run.mode_name +
-                          " is not available in this version: only Run = "
-                          "analytic and Run = mesh are implemented so far "
-                          "(the FE solves are tracked in the project's "
-                          "issues)."));
+                          " is not available in this version: Run = "
+                          "analytic, mesh and (2D, rigid pins) quasi-static "
+                          "are implemented so far (the rest is tracked in "
+                          "the project's issues)."));
+        }
+    }
+
+
+
+    void
+    run_quasi_static(const parameters::AllParameters &prm, const MPI_Comm comm)
+    {
+      AssertThrow(prm.scene.dimension == 2 && prm.scene.n_discs == 1,
+                  dealii::ExcMessage(
+                    "Run = quasi-static: only the 2D one-disc scene "
+                    "(Scene/Dimension = 2, Number of discs = 1) is "
+                    "implemented so far."));
+      const bool   root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      const double psi =
+        prm.loading.crank_angle_deg * dealii::numbers::PI / 180.;
+      contact::QuasiStatic2D    solver(prm, psi, comm);
+      postprocess::ResultWriter writer(prm.run.output_directory, root);
+      unsigned int              step = 0;
+      for (const double torque : prm.loading.torques)
+        {
+          postprocess::StiffnessRow             row;
+          std::vector<postprocess::PinForceRow> pins;
+          solver.solve(torque, row, pins);
+          row.step      = step;
+          row.crank_deg = prm.loading.crank_angle_deg;
+          for (auto &p : pins)
+            {
+              p.step      = step;
+              p.crank_deg = row.crank_deg;
+            }
+          writer.write(row, pins);
+          if (root)
+            std::cout << "  state " << step + 1 << ": T " << torque
+                      << " N m, beta " << row.rotation_rad << " rad, K_secant "
+                      << row.k_secant << ", K_tangent " << row.k_tangent
+                      << " N m/rad, pins " << row.pins_in_contact
+                      << ", active-set iterations " << row.iterations
+                      << ", dofs " << row.dofs << ", " << row.wall_s << " s"
+                      << std::endl;
+          ++step;
         }
     }
 

@@ -23,6 +23,14 @@ namespace cycloid
                  const MPI_Comm                   comm);
 
     /**
+     * `Run = quasi-static` (work in progress): FE contact of the 2D one-disc
+     * scene with rigid pins at `Crank angle`, for each `Torque`.
+     */
+    void
+    run_quasi_static(const parameters::AllParameters &parameters,
+                     const MPI_Comm                   comm);
+
+    /**
      * `Run = mesh`: generate the scene's mesh (Scene/Dimension), write it
      * as mesh.pvtu / mesh_boundary.pvtu with body, boundary and rank ids,
      * print cell counts and quality, and fail on inverted cells.

@@ -84,6 +84,33 @@ namespace cycloid
       assemble(const std::map<dealii::types::boundary_id,
                               const dealii::Function<dim> *> &tractions);
 
+      /**
+       * Internal force vector f_int = sum_cells int B^T sigma(u) of a
+       * displacement @p u (with ghosts), assembled without constraints: at
+       * a constrained DoF it is the reaction of the constraint on the body,
+       * at a free DoF (equilibrium, no load) zero. Returned with ghosts.
+       */
+      dealii::TrilinosWrappers::MPI::Vector
+      internal_forces(const dealii::TrilinosWrappers::MPI::Vector &u) const;
+
+      /** Support points of all locally relevant DoFs. */
+      std::map<dealii::types::global_dof_index, dealii::Point<dim>>
+      support_points() const;
+
+      /** Locally owned DoFs. */
+      const dealii::IndexSet &
+      locally_owned_dofs() const
+      {
+        return locally_owned;
+      }
+
+      /** Locally relevant DoFs. */
+      const dealii::IndexSet &
+      locally_relevant_dofs() const
+      {
+        return locally_relevant;
+      }
+
       /** Solve; returns the number of iterations (0 for direct). Throws
        * with the solver's message when it fails. */
       unsigned int

@@ -1,0 +1,77 @@
+#!/usr/bin/python3
+"""Checks of a `Run = quasi-static` run on 1 and 2 MPI ranks.
+
+Usage: check_quasi_static.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
+
+* torque balance: the reaction torque at the crank holes equals the target,
+  and the sum of pin force x arm equals it (to round-off: 1e-8);
+* the same K, rotation and engaged pins on 1 and 2 ranks (1e-6);
+* monotonicity with torque: engaged pins and K_secant do not decrease;
+* at the highest torque the FE model engages the same pins as the
+  analytical model of the same scene (run here with Run = analytic).
+"""
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+
+failures = []
+
+
+def check(cond, msg):
+    if not cond:
+        failures.append(msg)
+
+
+def rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def main(prm, dir1, dir2, exe):
+    s1, s2 = rows(f"{dir1}/stiffness.csv"), rows(f"{dir2}/stiffness.csv")
+    p2 = rows(f"{dir2}/pin_forces.csv")
+    check(len(s1) == len(s2) and len(s1) > 1, "state counts")
+    for a, b in zip(s1, s2):
+        for key in ("rotation_rad", "K_tangent_Nm_per_rad", "K_secant_Nm_per_rad"):
+            x, y = float(a[key]), float(b[key])
+            check(abs(x - y) <= 1e-6 * abs(x), f"{key} differs on 1 and 2 ranks: {x} vs {y}")
+        check(a["pins_in_contact"] == b["pins_in_contact"], "engaged pins differ on 1 and 2 ranks")
+    previous_pins, previous_k = 0, 0.0
+    for s in s2:
+        t = float(s["torque_Nm"])
+        check(abs(float(s["reaction_torque_Nm"]) - t) <= 1e-8 * t, f"reaction torque {s['reaction_torque_Nm']} != {t}")
+        total = sum(float(r["Fn_N"]) * float(r["arm_mm"]) * 1e-3 for r in p2 if r["step"] == s["step"])
+        check(abs(total - t) <= 1e-8 * t, f"sum F arm = {total} != {t}")
+        check(int(s["pins_in_contact"]) >= previous_pins, "engaged pins decrease with torque")
+        check(float(s["K_secant_Nm_per_rad"]) >= previous_k, "K_secant decreases with torque")
+        previous_pins, previous_k = int(s["pins_in_contact"]), float(s["K_secant_Nm_per_rad"])
+        print(f"T {t:g} N m: beta {float(s['rotation_rad']):.6e} rad, K_secant {float(s['K_secant_Nm_per_rad']):.4e}, "
+              f"K_tangent {float(s['K_tangent_Nm_per_rad']):.4e} N m/rad, pins {s['pins_in_contact']}, "
+              f"active-set iterations {s['active_set_iterations']}")
+
+    # The analytical model of the same scene.
+    with tempfile.TemporaryDirectory() as tmp:
+        text = open(prm).read().replace("set Run = quasi-static", "set Run = analytic")
+        text = text.replace("set Output directory", f"set Output directory = {tmp}/a\n# ")
+        with open(f"{tmp}/a.prm", "w") as f:
+            f.write(text)
+        subprocess.run([exe, f"{tmp}/a.prm"], check=True, capture_output=True)
+        pa = rows(f"{tmp}/a/pin_forces.csv")
+    last = s2[-1]["step"]
+    fe = sorted(int(r["pin"]) for r in p2 if r["step"] == last and float(r["Fn_N"]) > 0)
+    an = sorted(int(r["pin"]) for r in pa if r["step"] == last and float(r["Fn_N"]) > 0)
+    print("engaged pins at the highest torque: FE", fe, "analytic", an)
+    check(fe == an, "FE and analytical models engage different pins at the highest torque")
+    if failures:
+        print(f"{len(failures)} check(s) failed:")
+        for f in failures:
+            print("  ", f)
+        return 1
+    print("all checks passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(*sys.argv[1:5]))
