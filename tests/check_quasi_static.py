@@ -1,14 +1,16 @@
 #!/usr/bin/python3
 """Checks of a `Run = quasi-static` run on 1 and 2 MPI ranks.
 
-Usage: check_quasi_static.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
+Usage: check_quasi_static.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE [STIFFER_DIR]
 
 * torque balance: the reaction torque at the crank holes equals the target,
   and the sum of pin force x arm equals it (to round-off: 1e-8);
 * the same K, rotation and engaged pins on 1 and 2 ranks (1e-6);
 * monotonicity with torque: engaged pins and K_secant do not decrease;
 * at the highest torque the FE model engages the same pins as the
-  analytical model of the same scene (run here with Run = analytic).
+  analytical model of the same scene (run here with Run = analytic);
+* with STIFFER_DIR (the same scene with rigid pins): that run is stiffer
+  (smaller rotation, larger K_secant and K_tangent) at every torque.
 """
 import csv
 import os
@@ -29,7 +31,7 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
-def main(prm, dir1, dir2, exe):
+def main(prm, dir1, dir2, exe, stiffer=None):
     s1, s2 = rows(f"{dir1}/stiffness.csv"), rows(f"{dir2}/stiffness.csv")
     p2 = rows(f"{dir2}/pin_forces.csv")
     check(len(s1) == len(s2) and len(s1) > 1, "state counts")
@@ -64,6 +66,13 @@ def main(prm, dir1, dir2, exe):
     an = sorted(int(r["pin"]) for r in pa if r["step"] == last and float(r["Fn_N"]) > 0)
     print("engaged pins at the highest torque: FE", fe, "analytic", an)
     check(fe == an, "FE and analytical models engage different pins at the highest torque")
+    if stiffer:
+        for a, b in zip(rows(f"{stiffer}/stiffness.csv"), s2):
+            print(f"T {b['torque_Nm']} N m: K_tangent rigid pins {float(a['K_tangent_Nm_per_rad']):.4e}, "
+                  f"this run {float(b['K_tangent_Nm_per_rad']):.4e}")
+            check(float(a["rotation_rad"]) < float(b["rotation_rad"]), "rigid pins do not turn less")
+            check(float(a["K_tangent_Nm_per_rad"]) > float(b["K_tangent_Nm_per_rad"]), "rigid pins not stiffer (tangent)")
+            check(float(a["K_secant_elastic_Nm_per_rad"]) > float(b["K_secant_elastic_Nm_per_rad"]), "rigid pins not stiffer (secant)")
     if failures:
         print(f"{len(failures)} check(s) failed:")
         for f in failures:
@@ -74,4 +83,4 @@ def main(prm, dir1, dir2, exe):
 
 
 if __name__ == "__main__":
-    sys.exit(main(*sys.argv[1:5]))
+    sys.exit(main(*sys.argv[1:6]))

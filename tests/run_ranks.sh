@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Run a prm on 1 and on 2 MPI ranks, then a checker on both outputs.
-# Usage: run_ranks.sh EXECUTABLE PRM WORKDIR CHECKER
+# Usage: run_ranks.sh EXECUTABLE PRM WORKDIR CHECKER [EXTRA CHECKER ARGS]
 set -euo pipefail
 exe=$1 prm=$2 work=$3 checker=$4
+shift 4
 flags=()
 [ "$(id -u)" -eq 0 ] && flags+=(--allow-run-as-root)
 [ "$(nproc)" -lt 2 ] && flags+=(--oversubscribe)
@@ -12,4 +13,4 @@ mpirun "${flags[@]}" -np 1 "$exe" "$prm"
 mv "$outdir" np1
 mpirun "${flags[@]}" -np 2 "$exe" "$prm"
 mv "$outdir" np2
-/usr/bin/python3 "$checker" "$prm" np1 np2 "$exe"
+/usr/bin/python3 "$checker" "$prm" np1 np2 "$exe" "$@"

@@ -45,11 +45,11 @@ namespace cycloid
              false,
              dealii::parallel::shared::Triangulation<2>::partition_metis)
     {
-      AssertThrow(prm.scene.pins ==
-                    parameters::SceneParameters::PinModel::rigid,
+      AssertThrow(prm.scene.pin_support ==
+                    parameters::SceneParameters::PinSupport::axis,
                   dealii::ExcMessage(
-                    "Run = quasi-static: only Scene/Pins = rigid is "
-                    "implemented so far (elastic pins are in progress)."));
+                    "Run = quasi-static: only Scene/Pin support = axis is "
+                    "implemented so far."));
       mesh::create_stage_mesh(prm, psi, tria);
       std::map<dealii::types::material_id, parameters::ElasticMaterial>
         materials{{ids::disc(0), prm.material.disc}};
@@ -72,6 +72,12 @@ namespace cycloid
             parameters::SceneParameters::LoadIntroduction::bore ?
           ids::bore :
           ids::crank_hole;
+      struct Edge
+      {
+        dealii::Point<2>                             a, b;
+        std::vector<dealii::types::global_dof_index> dofs; // ax ay bx by
+      };
+      std::vector<std::vector<Edge>>    edges(prm.geometry.n_pins);
       std::map<unsigned int, SlaveNode> by_vertex;
       for (const auto &cell : problem->dof_handler().active_cell_iterators())
         {
@@ -79,10 +85,28 @@ namespace cycloid
             continue;
           if (ids::is_pin(cell->material_id()))
             {
+              const unsigned int j = cell->material_id() - ids::pin(0);
               std::vector<dealii::types::global_dof_index> dofs(
                 cell->get_fe().n_dofs_per_cell());
               cell->get_dof_indices(dofs);
               pin_dofs.insert(dofs.begin(), dofs.end());
+              for (const unsigned int v : cell->vertex_indices())
+                if (cell->vertex(v).distance(geo.pin_centre(j)) <
+                    prm.scene.pin_core_radius * (1. + 1e-9))
+                  for (unsigned int c = 0; c < 2; ++c)
+                    core_dofs.insert(cell->vertex_dof_index(v, c));
+              for (const unsigned int f : cell->face_indices())
+                if (cell->face(f)->at_boundary() &&
+                    cell->face(f)->boundary_id() == ids::pin_surface)
+                  {
+                    const auto face = cell->face(f);
+                    edges[j].push_back({face->vertex(0),
+                                        face->vertex(1),
+                                        {face->vertex_dof_index(0, 0),
+                                         face->vertex_dof_index(0, 1),
+                                         face->vertex_dof_index(1, 0),
+                                         face->vertex_dof_index(1, 1)}});
+                  }
               continue;
             }
           for (const unsigned int f : cell->face_indices())
@@ -125,8 +149,47 @@ namespace cycloid
                 }
             }
         }
-      for (const auto &[v, s] : by_vertex)
-        slaves.push_back(s);
+      std::vector<dealii::types::global_dof_index> masters;
+      for (auto &[v, s] : by_vertex)
+        {
+          if (prm.scene.pins == parameters::SceneParameters::PinModel::elastic)
+            {
+              // The pin edge that holds the projection P of the node onto
+              // the exact cylinder, and P's position t along its chord.
+              const dealii::Point<2> P =
+                geo.pin_centre(s.pin) +
+                prm.geometry.pin_radius *
+                  ((s.position - geo.pin_centre(s.pin)) /
+                   s.position.distance(geo.pin_centre(s.pin)));
+              double      best = 1e300, t_best = 0;
+              const Edge *edge = nullptr;
+              for (const Edge &e : edges[s.pin])
+                {
+                  const dealii::Tensor<1, 2> ab = e.b - e.a;
+                  const double               t =
+                    std::clamp((P - e.a) * ab / ab.norm_square(), 0., 1.);
+                  const double d = P.distance(e.a + t * ab);
+                  if (d < best)
+                    {
+                      best   = d;
+                      t_best = t;
+                      edge   = &e;
+                    }
+                }
+              AssertThrow(edge != nullptr,
+                          dealii::ExcMessage("quasi-static: pin " +
+                                             std::to_string(s.pin) +
+                                             " has no surface edges."));
+              s.master_weights = {1. - t_best, t_best};
+              s.master_dofs[0] = {edge->dofs[0], edge->dofs[2]};
+              s.master_dofs[1] = {edge->dofs[1], edge->dofs[3]};
+              masters.insert(masters.end(),
+                             edge->dofs.begin(),
+                             edge->dofs.end());
+            }
+          slaves.push_back(s);
+        }
+      problem->set_extra_relevant_dofs(masters);
     }
 
 
@@ -139,8 +202,10 @@ namespace cycloid
     {
       const dealii::Point<2> centre = geo.disc_centre(0, psi);
       problem->setup_system([&](dealii::AffineConstraints<double> &c) {
-        // Rigid pins: held in place.
-        for (const auto d : pin_dofs)
+        // Rigid pins are held in place; elastic pins at their core.
+        const bool rigid =
+          prm.scene.pins == parameters::SceneParameters::PinModel::rigid;
+        for (const auto d : (rigid ? pin_dofs : core_dofs))
           if (c.can_store_line(d) && !c.is_constrained(d))
             c.add_line(d);
         // Load: the crank holes turn rigidly by beta about the disc centre.
@@ -172,6 +237,12 @@ namespace cycloid
               continue;
             c.add_line(dk);
             c.add_entry(dk, dother, -s.normal[1 - k] / s.normal[k]);
+            // Elastic pin: + n . u_pin(P) / n_k.
+            for (unsigned int comp = 0; comp < 2; ++comp)
+              for (unsigned int a = 0; a < s.master_weights.size(); ++a)
+                c.add_entry(dk,
+                            s.master_dofs[comp][a],
+                            s.normal[comp] * s.master_weights[a] / s.normal[k]);
             c.set_inhomogeneity(dk, with_gaps ? -s.gap0 / s.normal[k] : 0.);
           }
       });
@@ -275,6 +346,10 @@ namespace cycloid
               for (unsigned int c = 0; c < 2; ++c)
                 {
                   gap += s.normal[c] * (u0[s.dofs[c]] + beta * u1[s.dofs[c]]);
+                  for (unsigned int a = 0; a < s.master_weights.size(); ++a)
+                    gap -= s.normal[c] * s.master_weights[a] *
+                           (u0[s.master_dofs[c][a]] +
+                            beta * u1[s.master_dofs[c][a]]);
                   lambda +=
                     s.normal[c] * (f0[s.dofs[c]] + beta * f1[s.dofs[c]]);
                 }

@@ -13,6 +13,8 @@
 
 #include <cycloid/elasticity/elasticity.h>
 
+#include <algorithm>
+
 #include <Teuchos_ParameterList.hpp>
 
 namespace cycloid
@@ -43,6 +45,12 @@ namespace cycloid
       dofs.distribute_dofs(fe);
       locally_owned = dofs.locally_owned_dofs();
       dealii::DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant);
+      if (!extra_relevant.empty())
+        {
+          std::vector<dealii::types::global_dof_index> extra = extra_relevant;
+          std::sort(extra.begin(), extra.end());
+          locally_relevant.add_indices(extra.begin(), extra.end());
+        }
 
       all_constraints.clear();
       all_constraints.reinit(locally_relevant);

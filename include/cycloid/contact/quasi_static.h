@@ -37,12 +37,24 @@ namespace cycloid
       dealii::Tensor<1, 2> normal;
       /** Initial gap to the pin's exact cylinder [mm]. */
       double gap0;
+      /** Elastic pins: the pin-surface DoFs (x and y of the two vertices
+       * of the pin edge that holds the projection of the node) and their
+       * interpolation weights. Empty for rigid pins. */
+      std::vector<dealii::types::global_dof_index> master_dofs[2];
+      std::vector<double>                          master_weights;
     };
 
     /**
      * @brief Quasi-static frictionless contact between one disc (2D, plane
-     * strain) and rigid pins, by a primal-dual active set on the flank
-     * vertices (work in progress for issue #4: rigid pins, 2D, Q1).
+     * strain) and rigid or elastic pins, by a primal-dual active set on the
+     * flank vertices (work in progress for issue #4: 2D, Q1).
+     *
+     * Elastic pins are held at their rigid core (all DoFs within `Pin core
+     * radius` of the axis); the constraint of an active node then couples
+     * the disc node to the pin surface: n . (u_s - u_pin(P)) = -gap0, with
+     * u_pin interpolated on the pin edge that holds the node's projection P
+     * onto the exact pin cylinder (node-to-surface; the pin DoFs it refers
+     * to are ghosted on every rank).
      *
      * Per active-set iteration, the active slave nodes' normal gap is held
      * at zero by an affine constraint that eliminates the node's dominant
@@ -93,6 +105,7 @@ namespace cycloid
       std::set<unsigned int>                                      active;
       std::set<dealii::types::global_dof_index> crank_hole_dofs;
       std::set<dealii::types::global_dof_index> pin_dofs;
+      std::set<dealii::types::global_dof_index> core_dofs;
       unsigned int                              last_iterations = 0;
     };
   } // namespace contact

@@ -66,6 +66,16 @@ namespace cycloid
         const std::map<dealii::types::material_id, parameters::ElasticMaterial>
           &materials);
 
+      /** DoFs to hold as ghosts on every rank in addition to the locally
+       * relevant ones (e.g. the master DoFs that contact constraints of
+       * this rank's slave nodes refer to). Takes effect at setup_system(). */
+      void
+      set_extra_relevant_dofs(
+        const std::vector<dealii::types::global_dof_index> &extra)
+      {
+        extra_relevant = extra;
+      }
+
       /** Distribute the DoFs and build the sparsity pattern. @p constrain
        * adds the problem's constraints (e.g. Dirichlet values) to the
        * hanging-node constraints; it is called with the constraint object
@@ -168,12 +178,13 @@ namespace cycloid
       const std::map<dealii::types::material_id, parameters::ElasticMaterial>
         materials;
 
-      dealii::IndexSet                       locally_owned;
-      dealii::IndexSet                       locally_relevant;
-      dealii::AffineConstraints<double>      all_constraints;
-      dealii::TrilinosWrappers::SparseMatrix system_matrix;
-      dealii::TrilinosWrappers::MPI::Vector  system_rhs;
-      dealii::TrilinosWrappers::MPI::Vector  locally_relevant_solution;
+      std::vector<dealii::types::global_dof_index> extra_relevant;
+      dealii::IndexSet                             locally_owned;
+      dealii::IndexSet                             locally_relevant;
+      dealii::AffineConstraints<double>            all_constraints;
+      dealii::TrilinosWrappers::SparseMatrix       system_matrix;
+      dealii::TrilinosWrappers::MPI::Vector        system_rhs;
+      dealii::TrilinosWrappers::MPI::Vector        locally_relevant_solution;
 
       std::unique_ptr<Epetra_MultiVector>       null_space;
       dealii::TrilinosWrappers::PreconditionAMG amg;
