@@ -78,6 +78,7 @@ namespace cycloid
               p.crank_deg = row.crank_deg;
             }
           writer.write(row, pins);
+          solver.output_results(step);
           if (root)
             std::cout << "  state " << step + 1 << ": T " << torque
                       << " N m, beta " << row.rotation_rad << " rad, K_secant "

@@ -5,6 +5,8 @@
 
 #include <deal.II/grid/tria_accessor.h>
 #include <deal.II/grid/tria_iterator.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
 
 #include <cycloid/analytic/stage_model.h>
 #include <cycloid/contact/quasi_static.h>
@@ -14,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -389,6 +392,26 @@ namespace cycloid
           active = next;
         }
 
+      {
+        dealii::TrilinosWrappers::MPI::Vector a(problem->locally_owned_dofs(),
+                                                comm),
+          b(problem->locally_owned_dofs(), comm);
+        a = u0;
+        b = u1;
+        a.add(beta, b);
+        u_last.reinit(problem->locally_owned_dofs(),
+                      problem->locally_relevant_dofs(),
+                      comm);
+        u_last = a;
+        a      = f0;
+        b      = f1;
+        a.add(beta, b);
+        f_last.reinit(problem->locally_owned_dofs(),
+                      problem->locally_relevant_dofs(),
+                      comm);
+        f_last = a;
+      }
+
       // Pin forces from the slave reactions (force of the pin on the disc),
       // scaled to the tooth width.
       const unsigned int  zp = prm.geometry.n_pins;
@@ -453,6 +476,143 @@ namespace cycloid
       row.wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
+    }
+  } // namespace contact
+} // namespace cycloid
+
+
+
+namespace cycloid
+{
+  namespace contact
+  {
+    namespace
+    {
+      /** Von Mises stress of the displacement field, per body material
+       * (plane strain: sigma_zz = lambda tr(eps)). */
+      class VonMises : public dealii::DataPostprocessorScalar<2>
+      {
+      public:
+        explicit VonMises(const parameters::AllParameters &prm)
+          : dealii::DataPostprocessorScalar<2>("von_Mises",
+                                               dealii::update_gradients)
+          , prm(prm)
+        {}
+
+        void
+        evaluate_vector_field(
+          const dealii::DataPostprocessorInputs::Vector<2> &inputs,
+          std::vector<dealii::Vector<double>> &computed) const override
+        {
+          const auto   cell = inputs.template get_cell<2>();
+          const auto  &m    = mesh::ids::is_pin(cell->material_id()) ?
+                                prm.material.pin :
+                                prm.material.disc;
+          const double E = m.youngs_modulus, nu = m.poissons_ratio;
+          const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+          const double mu     = E / (2 * (1 + nu));
+          for (unsigned int q = 0; q < computed.size(); ++q)
+            {
+              const auto  &g   = inputs.solution_gradients[q];
+              const double e00 = g[0][0], e11 = g[1][1],
+                           e01 = 0.5 * (g[0][1] + g[1][0]);
+              const double tr  = e00 + e11;
+              const double s00 = lambda * tr + 2 * mu * e00;
+              const double s11 = lambda * tr + 2 * mu * e11;
+              const double s22 = lambda * tr;
+              const double s01 = 2 * mu * e01;
+              computed[q](0)   = std::sqrt(0.5 * ((s00 - s11) * (s00 - s11) +
+                                                (s11 - s22) * (s11 - s22) +
+                                                (s22 - s00) * (s22 - s00)) +
+                                         3 * s01 * s01);
+            }
+        }
+
+      private:
+        const parameters::AllParameters &prm;
+      };
+    } // namespace
+
+
+
+    void
+    QuasiStatic2D::output_results(const unsigned int step)
+    {
+      // Nodal fields of the contact: the reaction at active slave nodes
+      // (force per unit thickness, N/mm) and the active flag.
+      dealii::TrilinosWrappers::MPI::Vector force(problem->locally_owned_dofs(),
+                                                  comm),
+        flag(problem->locally_owned_dofs(), comm);
+      for (const unsigned int i : active)
+        for (unsigned int c = 0; c < 2; ++c)
+          if (problem->locally_owned_dofs().is_element(slaves[i].dofs[c]))
+            {
+              force[slaves[i].dofs[c]] = f_last[slaves[i].dofs[c]];
+              flag[slaves[i].dofs[c]]  = 1.;
+            }
+      force.compress(dealii::VectorOperation::insert);
+      flag.compress(dealii::VectorOperation::insert);
+      dealii::TrilinosWrappers::MPI::Vector force_g(
+        problem->locally_owned_dofs(), problem->locally_relevant_dofs(), comm),
+        flag_g(problem->locally_owned_dofs(),
+               problem->locally_relevant_dofs(),
+               comm);
+      force_g = force;
+      flag_g  = flag;
+
+      dealii::DataOut<2> data_out;
+      data_out.attach_dof_handler(problem->dof_handler());
+      const std::vector<
+        dealii::DataComponentInterpretation::DataComponentInterpretation>
+        vector(
+          2, dealii::DataComponentInterpretation::component_is_part_of_vector);
+      data_out.add_data_vector(u_last,
+                               std::vector<std::string>(2, "displacement"),
+                               dealii::DataOut<2>::type_dof_data,
+                               vector);
+      data_out.add_data_vector(force_g,
+                               std::vector<std::string>(2, "contact_force"),
+                               dealii::DataOut<2>::type_dof_data,
+                               vector);
+      data_out.add_data_vector(flag_g,
+                               std::vector<std::string>(2, "active_set"),
+                               dealii::DataOut<2>::type_dof_data,
+                               vector);
+      const VonMises von_mises(prm);
+      data_out.add_data_vector(u_last, von_mises);
+      dealii::Vector<float> body(tria.n_active_cells()),
+        rank(tria.n_active_cells());
+      for (const auto &cell : tria.active_cell_iterators())
+        {
+          body(cell->active_cell_index()) = cell->material_id();
+          rank(cell->active_cell_index()) = cell->subdomain_id();
+        }
+      data_out.add_data_vector(body, "body_id");
+      data_out.add_data_vector(rank, "mpi_rank");
+      data_out.build_patches(problem->mapping(), 1);
+
+      const std::string  number = dealii::Utilities::int_to_string(step, 4);
+      const std::string  name   = "solution-" + number;
+      const unsigned int r = dealii::Utilities::MPI::this_mpi_process(comm);
+      {
+        std::ofstream out(prm.run.output_directory + "/" + name + "." +
+                          dealii::Utilities::int_to_string(r, 4) + ".vtu");
+        data_out.write_vtu(out);
+      }
+      if (r == 0)
+        {
+          std::vector<std::string> pieces;
+          for (unsigned int k = 0;
+               k < dealii::Utilities::MPI::n_mpi_processes(comm);
+               ++k)
+            pieces.push_back(name + "." +
+                             dealii::Utilities::int_to_string(k, 4) + ".vtu");
+          std::ofstream pvtu(prm.run.output_directory + "/" + name + ".pvtu");
+          data_out.write_pvtu_record(pvtu, pieces);
+          written.emplace_back(step, name + ".pvtu");
+          std::ofstream pvd(prm.run.output_directory + "/solution.pvd");
+          dealii::DataOutBase::write_pvd_record(pvd, written);
+        }
     }
   } // namespace contact
 } // namespace cycloid

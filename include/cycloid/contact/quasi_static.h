@@ -84,6 +84,15 @@ namespace cycloid
             postprocess::StiffnessRow             &row,
             std::vector<postprocess::PinForceRow> &pins);
 
+      /**
+       * Write the last solved state as solution-NNNN.pvtu (+ one .vtu per
+       * rank) with displacement, von Mises stress, contact force and active
+       * flag of the slave nodes, body id and MPI rank, and rewrite
+       * solution.pvd; @p step numbers the state.
+       */
+      void
+      output_results(const unsigned int step);
+
     private:
       void
       find_slave_nodes();
@@ -107,6 +116,10 @@ namespace cycloid
       std::set<dealii::types::global_dof_index> pin_dofs;
       std::set<dealii::types::global_dof_index> core_dofs;
       unsigned int                              last_iterations = 0;
+      /** Last solved state: displacement and internal forces (ghosted). */
+      dealii::TrilinosWrappers::MPI::Vector u_last, f_last;
+      /** (state, file) of the written solutions, for the .pvd record. */
+      std::vector<std::pair<double, std::string>> written;
     };
   } // namespace contact
 } // namespace cycloid
