@@ -28,6 +28,23 @@ namespace cycloid
 
 
 
+    double
+    hertz_half_width(const double force,
+                     const double b,
+                     const double r,
+                     const double rho,
+                     const double e_disc,
+                     const double e_pin)
+    {
+      if (force <= 0)
+        return 0.;
+      const double inv_r = 1. / r - inverse_radius(rho);
+      const double inv_e = 1. / e_disc + (e_pin > 0 ? 1. / e_pin : 0.);
+      return std::sqrt(4. * force * inv_e / (dealii::numbers::PI * b * inv_r));
+    }
+
+
+
     void
     AnalyticParameters::declare_parameters(dealii::ParameterHandler &prm)
     {

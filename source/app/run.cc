@@ -196,6 +196,18 @@ namespace cycloid
                   r.pair_stiffness_N_per_mm = p.stiffness;
                   r.contact_x_mm            = p.contact.contact_point[0];
                   r.contact_y_mm            = p.contact.contact_point[1];
+                  r.hertz_halfwidth_um =
+                    1e3 * analytic::hertz_half_width(
+                            p.force,
+                            prm.geometry.tooth_width,
+                            prm.geometry.pin_radius,
+                            p.contact.curvature_radius,
+                            prm.material.disc.plane_strain_modulus(),
+                            prm.scene.pins ==
+                                parameters::SceneParameters::PinModel::rigid ?
+                              0. :
+                              prm.material.pin.plane_strain_modulus());
+                  r.contact_halfwidth_um = r.hertz_halfwidth_um;
                   row.max_pin_force_N = std::max(row.max_pin_force_N, p.force);
                   rows.push_back(r);
                 }

@@ -467,6 +467,56 @@ namespace cycloid
           p.phase_deg    = contacts[j].phase * 180. / dealii::numbers::PI;
           p.contact_x_mm = contacts[j].contact_point[0];
           p.contact_y_mm = contacts[j].contact_point[1];
+          // Contact half-width: half the arc between the outermost active
+          // nodes of this pin, plus half a node spacing on each side.
+          {
+            double                 lo = 1e300, hi = -1e300, spacing = 1e300;
+            const dealii::Point<2> c = geo.pin_centre(j);
+            const double a0 = std::atan2(contacts[j].contact_point[1] - c[1],
+                                         contacts[j].contact_point[0] - c[0]);
+            std::vector<double> angles;
+            for (const SlaveNode &s : slaves)
+              if (s.pin == j)
+                {
+                  double a =
+                    std::atan2(s.position[1] - c[1], s.position[0] - c[0]) - a0;
+                  a = std::remainder(a, 2. * dealii::numbers::PI);
+                  angles.push_back(a);
+                }
+            for (const unsigned int i : active)
+              if (slaves[i].pin == j)
+                {
+                  double a = std::atan2(slaves[i].position[1] - c[1],
+                                        slaves[i].position[0] - c[0]) -
+                             a0;
+                  a  = std::remainder(a, 2. * dealii::numbers::PI);
+                  lo = std::min(lo, a);
+                  hi = std::max(hi, a);
+                }
+            if (hi >= lo)
+              {
+                for (const double a : angles)
+                  if (a > hi || a < lo)
+                    spacing =
+                      std::min(spacing,
+                               std::min(std::abs(a - hi), std::abs(a - lo)));
+                if (spacing > 1e200)
+                  spacing = 0;
+                p.contact_halfwidth_um = 1e3 * prm.geometry.pin_radius *
+                                         (0.5 * (hi - lo) + 0.5 * spacing);
+              }
+            p.hertz_halfwidth_um =
+              1e3 *
+              analytic::hertz_half_width(
+                p.fn_N,
+                b,
+                prm.geometry.pin_radius,
+                contacts[j].curvature_radius,
+                prm.material.disc.plane_strain_modulus(),
+                prm.scene.pins == parameters::SceneParameters::PinModel::rigid ?
+                  0. :
+                  prm.material.pin.plane_strain_modulus());
+          }
           row.reaction_torque_Nm += p.fn_N * p.arm_mm * 1e-3;
           if (p.fn_N > 0)
             ++row.pins_in_contact;

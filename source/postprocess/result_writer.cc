@@ -26,7 +26,7 @@ namespace cycloid
     {
       return "step,crank_deg,disc,pin,Fx_N,Fy_N,Fn_N,arm_mm,clearance_um,"
              "phase_deg,approach_um,pair_stiffness_N_per_mm,contact_x_mm,"
-             "contact_y_mm";
+             "contact_y_mm,contact_halfwidth_um,hertz_halfwidth_um";
     }
 
 
@@ -73,7 +73,8 @@ namespace cycloid
                    << ',' << p.arm_mm << ',' << p.clearance_um << ','
                    << p.phase_deg << ',' << p.approach_um << ','
                    << p.pair_stiffness_N_per_mm << ',' << p.contact_x_mm << ','
-                   << p.contact_y_mm << '\n';
+                   << p.contact_y_mm << ',' << p.contact_halfwidth_um << ','
+                   << p.hertz_halfwidth_um << '\n';
       stiffness.flush();
       pin_forces.flush();
     }

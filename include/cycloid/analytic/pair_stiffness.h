@@ -32,6 +32,20 @@ namespace cycloid
     };
 
     /**
+     * @brief Hertz half-width of a pin against the disc profile [mm]:
+     * a = sqrt(4 F R* / (pi b E*)), 1/R* = 1/r - 1/rho (rho the signed
+     * profile curvature radius, positive concave), 1/E* = sum (1-nu^2)/E;
+     * @p pin_plane_strain_modulus <= 0 for a rigid pin.
+     */
+    double
+    hertz_half_width(const double force,
+                     const double tooth_width,
+                     const double pin_radius,
+                     const double profile_curvature_radius,
+                     const double disc_plane_strain_modulus,
+                     const double pin_plane_strain_modulus);
+
+    /**
      * @brief Interface of a pin-disc pair-stiffness model: the normal force
      * carried by one pair as a function of its approach (the overlap of the
      * undeformed bodies), and its derivative. Implementations are chosen

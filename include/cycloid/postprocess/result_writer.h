@@ -52,6 +52,12 @@ namespace cycloid
       double       pair_stiffness_N_per_mm = 0;
       double       contact_x_mm            = 0;
       double       contact_y_mm            = 0;
+      /** Contact half-width of the model [um]: FE, from the extent of the
+       * active nodes; analytical, Hertz's. */
+      double contact_halfwidth_um = 0;
+      /** Hertz half-width a = sqrt(4 F R* / (pi b E*)) for this pin's
+       * force and curvatures [um]. */
+      double hertz_halfwidth_um = 0;
     };
 
     /** Radians per arcminute. */
