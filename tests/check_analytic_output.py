@@ -22,6 +22,8 @@ import sys
 
 import numpy as np
 
+from cycloid_prm import read_prm
+
 DEFAULTS = {
     ("Geometry", "Number of pins"): "40",
     ("Geometry", "Number of cycloid teeth"): "39",
@@ -56,20 +58,6 @@ def check(condition, message):
         failures.append(message)
 
 
-def read_prm(path):
-    values, section = dict(DEFAULTS), []
-    for raw in open(path):
-        line = raw.split("#")[0].strip()
-        if line.startswith("subsection"):
-            section.append(line.split(None, 1)[1].strip())
-        elif line == "end":
-            section.pop()
-        elif line.startswith("set"):
-            key, value = line[3:].split("=", 1)
-            values[(section[-1] if section else "", key.strip())] = value.strip()
-    return lambda s, k: values[(s, k)]
-
-
 def read_csv(path):
     with open(path) as f:
         rows = list(csv.DictReader(f))
@@ -77,7 +65,7 @@ def read_csv(path):
 
 
 def main(prm_path, outdir):
-    get = read_prm(prm_path)
+    get = read_prm(prm_path, DEFAULTS)
     zp = int(get("Geometry", "Number of pins"))
     zc = int(get("Geometry", "Number of cycloid teeth"))
     rrp = float(get("Geometry", "Pin radius"))

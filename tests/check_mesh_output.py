@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Independent check of `Run = mesh` output with VTK's own reader.
 
-Usage: check_mesh_output.py FILE.prm DIR_1_RANK DIR_2_RANKS
+Usage: check_mesh_output.py FILE.prm DIR_1_RANK DIR_2_RANKS [EXECUTABLE]
 
+* the per-body statistics (mesh.csv) are identical on 1 and 2 ranks;
 * both PVTU files read, and hold the same global mesh (cells, per-body
   sorted centroids) on 1 and 2 ranks; the 2-rank mesh is split over both;
 * body ids complete: the discs, every pin, the housing when modelled;
@@ -18,6 +19,8 @@ import sys
 import numpy as np
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
+
+from cycloid_prm import read_prm
 
 failures = []
 
@@ -42,20 +45,6 @@ def read(path):
     return pts, cells, data
 
 
-def prm_values(path):
-    values, section = {}, []
-    for raw in open(path):
-        line = raw.split("#")[0].strip()
-        if line.startswith("subsection"):
-            section.append(line.split(None, 1)[1].strip())
-        elif line == "end":
-            section.pop()
-        elif line.startswith("set"):
-            k, v = line[3:].split("=", 1)
-            values[(section[-1] if section else "", k.strip())] = v.strip()
-    return lambda s, k, d: values.get((s, k), d)
-
-
 def exact_disc_area():
     zp, zc, rrp, e, k1 = 40, 39, 3.0, 2.2, 0.675
     rp = e * zp / k1
@@ -69,11 +58,13 @@ def exact_disc_area():
     return area - math.pi * 25**2 - 3 * math.pi * 15**2
 
 
-def main(prm, dir1, dir2):
-    get = prm_values(prm)
+def main(prm, dir1, dir2, exe=None):
+    get = read_prm(prm)
     dim = int(get("Scene", "Dimension", "2"))
     n_discs = int(get("Scene", "Number of discs", "2"))
     housing = get("Scene", "Pin support", "axis") == "housing"
+    check(open(f"{dir1}/mesh.csv").read() == open(f"{dir2}/mesh.csv").read(),
+          "mesh.csv differs between 1 and 2 ranks")
     meshes = []
     for d in (dir1, dir2):
         pts, cells, data = read(f"{d}/mesh.pvtu")
@@ -127,4 +118,4 @@ def main(prm, dir1, dir2):
 
 
 if __name__ == "__main__":
-    sys.exit(main(*sys.argv[1:4]))
+    sys.exit(main(*sys.argv[1:5]))
