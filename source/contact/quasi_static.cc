@@ -27,13 +27,6 @@ namespace cycloid
   {
     namespace ids = mesh::ids;
 
-    namespace
-    {
-      /** Slave candidates: flank vertices within this distance of a pin
-       * surface [mm]; the approach under load is a few micrometres. */
-      constexpr double candidate_distance = 0.1;
-    } // namespace
-
 
 
     QuasiStatic2D::QuasiStatic2D(const parameters::AllParameters &parameters,
@@ -138,7 +131,7 @@ namespace cycloid
                         nearest = j;
                       }
                   const double gap = d - prm.geometry.pin_radius;
-                  if (gap > candidate_distance)
+                  if (gap > prm.contact.search_distance)
                     continue;
                   SlaveNode s;
                   s.disc           = 0;
@@ -250,8 +243,13 @@ namespace cycloid
           }
       });
       problem->assemble({});
-      last_iterations +=
-        problem->solve(elasticity::LinearElasticity<2>::Solver::cg_amg, 1e-10);
+      last_iterations += problem->solve(
+        prm.contact.linear_solver == "direct" ?
+          elasticity::LinearElasticity<2>::Solver::direct :
+        prm.contact.linear_solver == "cg-amg-translations" ?
+          elasticity::LinearElasticity<2>::Solver::cg_amg_translations_only :
+          elasticity::LinearElasticity<2>::Solver::cg_amg,
+        prm.contact.solver_tolerance);
       u = problem->solution();
     }
 
@@ -324,10 +322,12 @@ namespace cycloid
       last_iterations                          = 0;
       for (;; ++it)
         {
-          AssertThrow(it < 100,
+          AssertThrow(it < prm.contact.max_active_set_iterations,
                       dealii::ExcMessage(
-                        "quasi-static: the active set did not settle in 100 "
-                        "iterations (torque " +
+                        "quasi-static: the active set did not settle in " +
+                        std::to_string(prm.contact.max_active_set_iterations) +
+                        " iterations (Contact/Maximum active set iterations; "
+                        "torque " +
                         std::to_string(torque) + " N m)."));
           solve_with_active_set(true, 0., u0);
           f0 = problem->internal_forces(u0);

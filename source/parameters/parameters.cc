@@ -260,6 +260,7 @@ namespace cycloid
       SceneParameters::declare_parameters(prm);
       analytic::AnalyticParameters::declare_parameters(prm);
       mesh::MeshParameters::declare_parameters(prm);
+      contact::ContactParameters::declare_parameters(prm);
     }
 
 
@@ -274,6 +275,7 @@ namespace cycloid
       scene.parse_parameters(prm);
       analytic.parse_parameters(prm);
       mesh.parse_parameters(prm);
+      contact.parse_parameters(prm);
       AssertThrow(scene.pin_core_radius < geometry.pin_radius,
                   dealii::ExcMessage("Scene/Pin core radius must be smaller "
                                      "than Geometry/Pin radius."));

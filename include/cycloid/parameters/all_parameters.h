@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <cycloid/analytic/analytic_parameters.h>
+#include <cycloid/contact/contact_parameters.h>
 #include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/mesh/mesh_parameters.h>
 #include <cycloid/parameters/loading.h>
@@ -31,6 +32,7 @@ namespace cycloid
       SceneParameters              scene;
       analytic::AnalyticParameters analytic;
       mesh::MeshParameters         mesh;
+      contact::ContactParameters   contact;
 
       /** Declare every subsection. */
       static void

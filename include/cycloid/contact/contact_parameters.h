@@ -1,0 +1,39 @@
+#ifndef cycloid_contact_contact_parameters_h
+#define cycloid_contact_contact_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace cycloid
+{
+  namespace contact
+  {
+    /**
+     * @brief Subsections `Contact` (active-set method) and `Solver` (linear
+     * solver of each active-set iteration).
+     */
+    struct ContactParameters
+    {
+      /** Iteration limit of the active set per load state. */
+      unsigned int max_active_set_iterations = 100;
+      /** Flank vertices closer than this to a pin surface are contact
+       * candidates [mm]. */
+      double search_distance = 0.1;
+      /** Linear solver: "cg-amg", "cg-amg-translations" or "direct". */
+      std::string linear_solver = "cg-amg";
+      /** Relative tolerance of the iterative solver [-]. */
+      double solver_tolerance = 1e-10;
+
+      /** Declare subsections `Contact` and `Solver`. */
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Read subsections `Contact` and `Solver`. */
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+  } // namespace contact
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,60 @@
+#include <cycloid/contact/contact_parameters.h>
+
+namespace cycloid
+{
+  namespace contact
+  {
+    void
+    ContactParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii::Patterns;
+      prm.enter_subsection("Contact");
+      {
+        prm.declare_entry("Maximum active set iterations",
+                          "100",
+                          Integer(1, 10000),
+                          "Iteration limit of the primal-dual active set per "
+                          "load state [-]; reaching it ends the run with an "
+                          "error naming the state.");
+        prm.declare_entry("Search distance",
+                          "0.1",
+                          Double(0),
+                          "Flank vertices closer than this to a pin surface "
+                          "are contact candidates [mm] (the approach under "
+                          "load is a few micrometres).");
+      }
+      prm.leave_subsection();
+      prm.enter_subsection("Solver");
+      {
+        prm.declare_entry("Linear solver",
+                          "cg-amg",
+                          Selection("cg-amg|cg-amg-translations|direct"),
+                          "Linear solver of each active-set iteration: CG "
+                          "with ML AMG given the rigid-body modes, the same "
+                          "with translations only (for studies), or a direct "
+                          "solver (small problems).");
+        prm.declare_entry("Relative tolerance",
+                          "1e-10",
+                          Double(1e-16, 1e-2),
+                          "Relative residual tolerance of CG [-].");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    ContactParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Contact");
+      max_active_set_iterations =
+        prm.get_integer("Maximum active set iterations");
+      search_distance = prm.get_double("Search distance");
+      prm.leave_subsection();
+      prm.enter_subsection("Solver");
+      linear_solver    = prm.get("Linear solver");
+      solver_tolerance = prm.get_double("Relative tolerance");
+      prm.leave_subsection();
+    }
+  } // namespace contact
+} // namespace cycloid
