@@ -37,12 +37,9 @@ namespace cycloid
           double depth = std::numeric_limits<double>::max();
           for (unsigned int k = 0; k < g.n_crank_holes; ++k)
             {
-              const double a = 2. * dealii::numbers::PI * k / g.n_crank_holes;
-              const dealii::Point<2> centre(g.crank_hole_circle_radius *
-                                              std::cos(a),
-                                            g.crank_hole_circle_radius *
-                                              std::sin(a));
-              depth = std::min(depth, p.distance(centre) - g.crank_hole_radius);
+              depth = std::min(depth,
+                               p.distance(geo.crank_hole_centre(k)) -
+                                 g.crank_hole_radius);
             }
           return depth;
         }

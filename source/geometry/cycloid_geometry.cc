@@ -521,6 +521,26 @@ namespace cycloid
 
 
     Point<2>
+    CycloidGeometry::crank_hole_centre(const unsigned int k) const
+    {
+      const double a = 2. * pi * k / std::max(1u, prm.n_crank_holes);
+      return Point<2>(prm.crank_hole_circle_radius * std::cos(a),
+                      prm.crank_hole_circle_radius * std::sin(a));
+    }
+
+
+
+    Point<2>
+    CycloidGeometry::crank_hole_centre(const unsigned int disc,
+                                       const unsigned int k,
+                                       const double       psi) const
+    {
+      return to_housing(disc, psi, crank_hole_centre(k));
+    }
+
+
+
+    Point<2>
     CycloidGeometry::pin_centre(const unsigned int j) const
     {
       const double angle = 2. * pi * j / zp;

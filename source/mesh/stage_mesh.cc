@@ -282,12 +282,7 @@ namespace cycloid
             loops.push_back(add_circle(centre, g.bore_radius, z0, lc, curves));
             for (unsigned int k = 0; k < g.n_crank_holes; ++k)
               {
-                const double a = 2. * pi * k / g.n_crank_holes;
-                const auto   h = geo_data.to_housing(
-                  d,
-                  psi,
-                  dealii::Point<2>(g.crank_hole_circle_radius * std::cos(a),
-                                   g.crank_hole_circle_radius * std::sin(a)));
+                const auto h = geo_data.crank_hole_centre(d, k, psi);
                 loops.push_back(
                   add_circle(h, g.crank_hole_radius, z0, lc, curves));
               }
@@ -361,7 +356,6 @@ namespace cycloid
                                             lc);
                 radial[j]   = geo::addLine(inner_pt[j], outer_pt[j]);
               }
-            const double h_radial = 0.5 * (m.pin_size + m.coarse_size);
             std::vector<std::pair<int, int>> transfinite;
             // Radial lines graded from the seat (about pin size) outwards.
             const double ratio    = 1.25;
@@ -373,7 +367,6 @@ namespace cycloid
                 covered += h;
                 ++n_radial;
               }
-            (void)h_radial;
             Body                          body;
             std::vector<std::vector<int>> corners;
             body.material = ids::housing;
@@ -465,15 +458,8 @@ namespace cycloid
               circles.push_back({geo_data.disc_centre(m, psi), g.bore_radius});
               for (unsigned int k = 0; k < g.n_crank_holes; ++k)
                 {
-                  const double a = 2. * pi * k / g.n_crank_holes;
-                  circles.push_back(
-                    {geo_data.to_housing(
-                       m,
-                       psi,
-                       dealii::Point<2>(
-                         g.crank_hole_circle_radius * std::cos(a),
-                         g.crank_hole_circle_radius * std::sin(a))),
-                     g.crank_hole_radius});
+                  circles.push_back({geo_data.crank_hole_centre(m, k, psi),
+                                     g.crank_hole_radius});
                 }
             }
           else
@@ -764,12 +750,7 @@ namespace cycloid
                               geo.disc_centre(d, psi)));
           for (unsigned int k = 0; k < g.n_crank_holes; ++k)
             {
-              const double a = 2. * pi * k / g.n_crank_holes;
-              const auto   h = geo.to_housing(
-                d,
-                psi,
-                dealii::Point<2>(g.crank_hole_circle_radius * std::cos(a),
-                                 g.crank_hole_circle_radius * std::sin(a)));
+              const auto h = geo.crank_hole_centre(d, k, psi);
               tria.set_manifold(ids::crank_hole_manifold(d, k),
                                 *make_circle_manifold<dim>(h));
             }
@@ -959,13 +940,7 @@ namespace cycloid
                     bool hole = false;
                     for (unsigned int k = 0; k < g.n_crank_holes && !hole; ++k)
                       {
-                        const double a = 2. * pi * k / g.n_crank_holes;
-                        const auto   h = geo.to_housing(
-                          d,
-                          psi,
-                          dealii::Point<2>(
-                            g.crank_hole_circle_radius * std::cos(a),
-                            g.crank_hole_circle_radius * std::sin(a)));
+                        const auto h = geo.crank_hole_centre(d, k, psi);
                         if (all_on_circle(pts, h, g.crank_hole_radius, tol))
                           {
                             hole = true;

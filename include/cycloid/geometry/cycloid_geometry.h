@@ -222,6 +222,18 @@ namespace cycloid
 
       /** @name Assembly in the housing frame */
       /** @{ */
+      /** Centre of crank hole @p k in the disc frame [mm] (hole k at angle
+       * 2 pi k / Number of crank holes). */
+      Point<2>
+      crank_hole_centre(const unsigned int k) const;
+
+      /** Centre of crank hole @p k of disc @p disc at crank angle @p psi,
+       * housing frame [mm]. */
+      Point<2>
+      crank_hole_centre(const unsigned int disc,
+                        const unsigned int k,
+                        const double       psi) const;
+
       /** Centre of pin @p j [mm]. */
       Point<2>
       pin_centre(const unsigned int j) const;
