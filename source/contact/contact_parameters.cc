@@ -22,6 +22,14 @@ namespace cycloid
                           "Flank vertices closer than this to a pin surface "
                           "are contact candidates [mm] (the approach under "
                           "load is a few micrometres).");
+        prm.declare_entry("Residual tolerance",
+                          "1e-6",
+                          Double(1e-14, 1),
+                          "Largest accepted equilibrium residual of a "
+                          "converged state, |C^T f_int| / |f_int| (internal "
+                          "forces condensed onto the free DoFs) [-]; above it "
+                          "the run stops with an error instead of reporting "
+                          "an unconverged state.");
       }
       prm.leave_subsection();
       prm.enter_subsection("Solver");
@@ -49,7 +57,8 @@ namespace cycloid
       prm.enter_subsection("Contact");
       max_active_set_iterations =
         prm.get_integer("Maximum active set iterations");
-      search_distance = prm.get_double("Search distance");
+      search_distance    = prm.get_double("Search distance");
+      residual_tolerance = prm.get_double("Residual tolerance");
       prm.leave_subsection();
       prm.enter_subsection("Solver");
       linear_solver    = prm.get("Linear solver");

@@ -2,12 +2,14 @@
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/numbers.h>
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/quadrature.h>
 
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/tria_accessor.h>
 #include <deal.II/grid/tria_iterator.h>
-#include <deal.II/numerics/data_out.h>
-#include <deal.II/numerics/data_postprocessor.h>
 
+#include <cycloid/analytic/pair_stiffness.h>
 #include <cycloid/analytic/stage_model.h>
 #include <cycloid/contact/quasi_static.h>
 #include <cycloid/mesh/stage_mesh.h>
@@ -15,7 +17,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -26,643 +27,448 @@ namespace cycloid
   namespace contact
   {
     namespace ids = mesh::ids;
+    using Scene   = parameters::SceneParameters;
 
 
 
-    QuasiStatic2D::QuasiStatic2D(const parameters::AllParameters &parameters,
-                                 const double                     psi,
-                                 const MPI_Comm                   comm)
+    template <int dim>
+    QuasiStatic<dim>::QuasiStatic(const parameters::AllParameters &parameters,
+                                  const double                     psi,
+                                  const MPI_Comm                   comm)
       : prm(parameters)
       , comm(comm)
       , psi(psi)
       , geo(parameters.geometry)
+      , pcout(std::cout, dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+      , timer(comm,
+              pcout,
+              dealii::TimerOutput::never,
+              dealii::TimerOutput::wall_times)
       , tria(comm,
-             dealii::Triangulation<2>::limit_level_difference_at_vertices,
+             dealii::Triangulation<dim>::limit_level_difference_at_vertices,
              false,
-             dealii::parallel::shared::Triangulation<2>::partition_metis)
+             dealii::parallel::shared::Triangulation<dim>::partition_metis)
     {
-      AssertThrow(prm.scene.pin_support ==
-                    parameters::SceneParameters::PinSupport::axis,
-                  dealii::ExcMessage(
-                    "Run = quasi-static: only Scene/Pin support = axis is "
-                    "implemented so far."));
-      mesh::create_stage_mesh(prm, psi, tria);
+      AssertThrow(
+        !(prm.scene.pins == Scene::PinModel::rigid &&
+          prm.scene.pin_support == Scene::PinSupport::housing),
+        dealii::ExcMessage(
+          "Scene: rigid pins need no housing (Pins = rigid holds every pin "
+          "DoF); use Pin support = axis, or Pins = elastic with the "
+          "housing."));
+      make_grid();
+
       std::map<dealii::types::material_id, parameters::ElasticMaterial>
-        materials{{ids::disc(0), prm.material.disc}};
+        materials;
+      for (unsigned int d = 0; d < prm.scene.n_discs; ++d)
+        materials[ids::disc(d)] = prm.material.disc;
       for (unsigned int j = 0; j < prm.geometry.n_pins; ++j)
         materials[ids::pin(j)] = prm.material.pin;
-      problem =
-        std::make_unique<elasticity::LinearElasticity<2>>(tria, 1, materials);
-      problem->setup_system([](dealii::AffineConstraints<double> &) {});
-      points = problem->support_points();
-      find_slave_nodes();
+      if (prm.scene.pin_support == Scene::PinSupport::housing)
+        materials[ids::housing] = prm.material.housing;
+
+      ContactSettings settings;
+      settings.max_iterations     = prm.contact.max_active_set_iterations;
+      settings.search_distance    = prm.contact.search_distance;
+      settings.solver_tolerance   = prm.contact.solver_tolerance;
+      settings.residual_tolerance = prm.contact.residual_tolerance;
+      settings.solver =
+        prm.contact.linear_solver == "direct" ?
+          elasticity::LinearSolver::direct :
+        prm.contact.linear_solver == "cg-amg-translations" ?
+          elasticity::LinearSolver::cg_amg_translations_only :
+          elasticity::LinearSolver::cg_amg;
+      contact = std::make_unique<ContactProblem<dim>>(tria,
+                                                      prm.mesh.degree,
+                                                      materials,
+                                                      settings);
+
+      std::set<dealii::types::material_id> discs;
+      for (unsigned int d = 0; d < prm.scene.n_discs; ++d)
+        discs.insert(ids::disc(d));
+      std::vector<MasterCylinder> pins(prm.geometry.n_pins);
+      for (unsigned int j = 0; j < pins.size(); ++j)
+        pins[j] = {geo.pin_centre(j),
+                   prm.geometry.pin_radius,
+                   ids::pin(j),
+                   ids::pin_surface};
+      contact->set_contact(discs,
+                           ids::flank,
+                           pins,
+                           prm.scene.pins == Scene::PinModel::elastic);
+      if (prm.scene.pin_support == Scene::PinSupport::housing)
+        contact->set_ties(ids::housing, ids::housing_seat);
+      setup_system();
     }
 
 
 
-    void
-    QuasiStatic2D::find_slave_nodes()
+    template <int dim>
+    QuasiStatic<dim>::~QuasiStatic()
     {
-      const auto load_surface =
-        prm.scene.load_introduction ==
-            parameters::SceneParameters::LoadIntroduction::bore ?
-          ids::bore :
-          ids::crank_hole;
-      struct Edge
-      {
-        dealii::Point<2>                             a, b;
-        std::vector<dealii::types::global_dof_index> dofs; // ax ay bx by
-      };
-      std::vector<std::vector<Edge>>    edges(prm.geometry.n_pins);
-      std::map<unsigned int, SlaveNode> by_vertex;
-      for (const auto &cell : problem->dof_handler().active_cell_iterators())
+      if (prm.run.mode == parameters::RunParameters::Mode::quasi_static)
+        timer.print_summary();
+    }
+
+
+
+    template <int dim>
+    double
+    QuasiStatic<dim>::width_scale() const
+    {
+      return dim == 2 ? prm.geometry.tooth_width : 1.;
+    }
+
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::make_grid()
+    {
+      dealii::TimerOutput::Scope t(timer, "make grid");
+      mesh::create_stage_mesh(prm, psi, tria);
+      pcout << "  mesh: " << dim << "D, " << prm.scene.n_discs
+            << " disc(s), " << tria.n_global_active_cells() << " cells"
+            << std::endl;
+    }
+
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::setup_system()
+    {
+      dealii::TimerOutput::Scope t(timer, "setup system");
+      contact->setup();
+      const auto &el      = contact->elasticity();
+      const auto &fe      = el.finite_element();
+      const auto  load_id = prm.scene.load_introduction ==
+                                Scene::LoadIntroduction::bore ?
+                              ids::bore :
+                              ids::crank_hole;
+      const bool  rigid   = prm.scene.pins == Scene::PinModel::rigid;
+      const double core   = prm.scene.pin_core_radius * (1. + 1e-9);
+      // Positions of a cell's nodes (support points on the exact mapping).
+      const dealii::Quadrature<dim> nodes(
+        fe.base_element(0).get_unit_support_points());
+      dealii::FEValues<dim> fe_values(el.mapping(),
+                                      fe,
+                                      nodes,
+                                      dealii::update_quadrature_points);
+      std::vector<dealii::types::global_dof_index> indices(fe.n_dofs_per_cell());
+      std::vector<dealii::types::global_dof_index> fixed;
+      std::map<dealii::types::global_dof_index, double> load;
+      for (const auto &cell : el.dof_handler().active_cell_iterators())
         {
-          if (cell->is_artificial())
-            continue;
-          if (ids::is_pin(cell->material_id()))
+          const auto m = cell->material_id();
+          cell->get_dof_indices(indices);
+          if (ids::is_pin(m))
             {
-              const unsigned int j = cell->material_id() - ids::pin(0);
-              std::vector<dealii::types::global_dof_index> dofs(
-                cell->get_fe().n_dofs_per_cell());
-              cell->get_dof_indices(dofs);
-              pin_dofs.insert(dofs.begin(), dofs.end());
+              if (rigid)
+                {
+                  fixed.insert(fixed.end(), indices.begin(), indices.end());
+                  continue;
+                }
+              if (prm.scene.pin_support != Scene::PinSupport::axis)
+                continue;
+              const auto c = geo.pin_centre(m - ids::pin(0));
+              bool       near = false;
               for (const unsigned int v : cell->vertex_indices())
-                if (cell->vertex(v).distance(geo.pin_centre(j)) <
-                    prm.scene.pin_core_radius * (1. + 1e-9))
-                  for (unsigned int c = 0; c < 2; ++c)
-                    core_dofs.insert(cell->vertex_dof_index(v, c));
-              for (const unsigned int f : cell->face_indices())
-                if (cell->face(f)->at_boundary() &&
-                    cell->face(f)->boundary_id() == ids::pin_surface)
-                  {
-                    const auto face = cell->face(f);
-                    edges[j].push_back({face->vertex(0),
-                                        face->vertex(1),
-                                        {face->vertex_dof_index(0, 0),
-                                         face->vertex_dof_index(0, 1),
-                                         face->vertex_dof_index(1, 0),
-                                         face->vertex_dof_index(1, 1)}});
-                  }
+                near |= std::hypot(cell->vertex(v)[0] - c[0],
+                                   cell->vertex(v)[1] - c[1]) < core;
+              if (!near)
+                continue;
+              fe_values.reinit(cell);
+              for (unsigned int i = 0; i < indices.size(); ++i)
+                {
+                  const auto &x =
+                    fe_values.quadrature_point(fe.system_to_component_index(i).second);
+                  if (std::hypot(x[0] - c[0], x[1] - c[1]) < core)
+                    fixed.push_back(indices[i]);
+                }
               continue;
             }
+          // Housing: the outer surface is held; disc: the load surface
+          // turns by beta about the disc's centre.
+          const bool housing = m == ids::housing;
+          const auto surface = housing ? ids::housing_outer : load_id;
           for (const unsigned int f : cell->face_indices())
             {
-              const auto face = cell->face(f);
-              if (!face->at_boundary())
+              if (!cell->face(f)->at_boundary() ||
+                  cell->face(f)->boundary_id() != surface)
                 continue;
-              if (face->boundary_id() == load_surface)
-                for (const unsigned int v : face->vertex_indices())
-                  for (unsigned int c = 0; c < 2; ++c)
-                    crank_hole_dofs.insert(face->vertex_dof_index(v, c));
-              if (face->boundary_id() != ids::flank)
-                continue;
-              for (const unsigned int v : face->vertex_indices())
+              if (housing)
                 {
-                  const unsigned int index = face->vertex_index(v);
-                  if (by_vertex.count(index))
-                    continue;
-                  const dealii::Point<2> x       = face->vertex(v);
-                  unsigned int           nearest = 0;
-                  double                 d       = 1e300;
-                  for (unsigned int j = 0; j < prm.geometry.n_pins; ++j)
-                    if (x.distance(geo.pin_centre(j)) < d)
-                      {
-                        d       = x.distance(geo.pin_centre(j));
-                        nearest = j;
-                      }
-                  const double gap = d - prm.geometry.pin_radius;
-                  if (gap > prm.contact.search_distance)
-                    continue;
-                  SlaveNode s;
-                  s.disc           = 0;
-                  s.pin            = nearest;
-                  s.position       = x;
-                  s.normal         = (x - geo.pin_centre(nearest)) / d;
-                  s.gap0           = gap;
-                  s.dofs           = {face->vertex_dof_index(v, 0),
-                                      face->vertex_dof_index(v, 1)};
-                  by_vertex[index] = s;
+                  for (unsigned int i = 0; i < indices.size(); ++i)
+                    if (fe.has_support_on_face(i, f))
+                      fixed.push_back(indices[i]);
+                  continue;
                 }
+              fe_values.reinit(cell);
+              const dealii::Point<2> centre = geo.disc_centre(m, psi);
+              for (unsigned int i = 0; i < indices.size(); ++i)
+                if (fe.has_support_on_face(i, f))
+                  {
+                    const auto [comp, node] = fe.system_to_component_index(i);
+                    const auto &x           = fe_values.quadrature_point(node);
+                    // beta z x (x - c): (-(y - cy), x - cx, 0)
+                    load[indices[i]] = comp == 0 ? -(x[1] - centre[1]) :
+                                       comp == 1 ? x[0] - centre[0] :
+                                                   0.;
+                  }
             }
         }
-      std::vector<dealii::types::global_dof_index> masters;
-      for (auto &[v, s] : by_vertex)
-        {
-          if (prm.scene.pins == parameters::SceneParameters::PinModel::elastic)
-            {
-              // The pin edge that holds the projection P of the node onto
-              // the exact cylinder, and P's position t along its chord.
-              const dealii::Point<2> P =
-                geo.pin_centre(s.pin) +
-                prm.geometry.pin_radius *
-                  ((s.position - geo.pin_centre(s.pin)) /
-                   s.position.distance(geo.pin_centre(s.pin)));
-              double      best = 1e300, t_best = 0;
-              const Edge *edge = nullptr;
-              for (const Edge &e : edges[s.pin])
-                {
-                  const dealii::Tensor<1, 2> ab = e.b - e.a;
-                  const double               t =
-                    std::clamp((P - e.a) * ab / ab.norm_square(), 0., 1.);
-                  const double d = P.distance(e.a + t * ab);
-                  if (d < best)
-                    {
-                      best   = d;
-                      t_best = t;
-                      edge   = &e;
-                    }
-                }
-              AssertThrow(edge != nullptr,
-                          dealii::ExcMessage("quasi-static: pin " +
-                                             std::to_string(s.pin) +
-                                             " has no surface edges."));
-              s.master_weights = {1. - t_best, t_best};
-              s.master_dofs[0] = {edge->dofs[0], edge->dofs[2]};
-              s.master_dofs[1] = {edge->dofs[1], edge->dofs[3]};
-              masters.insert(masters.end(),
-                             edge->dofs.begin(),
-                             edge->dofs.end());
-            }
-          slaves.push_back(s);
-        }
-      problem->set_extra_relevant_dofs(masters);
+      contact->set_fixed_dofs(fixed);
+      contact->set_load(load);
+      unsigned int hanging = 0;
+      for (const auto &s : contact->slave_nodes())
+        hanging += s.hanging;
+      pcout << "  contact: " << el.n_dofs() << " DoFs (Q" << fe.degree
+            << "), " << contact->slave_nodes().size() << " candidate nodes ("
+            << hanging << " hanging)"
+            << (contact->tied_nodes().empty() ?
+                  std::string() :
+                  ", " + std::to_string(contact->tied_nodes().size()) +
+                    " seat nodes glued to the pins")
+            << std::endl;
     }
 
 
 
+    template <int dim>
+    ContactState
+    QuasiStatic<dim>::solve_state(const double torque)
+    {
+      dealii::TimerOutput::Scope t(timer, "solve (active set)");
+      std::ostringstream         label;
+      label << "crank angle " << psi * 180. / dealii::numbers::PI
+            << " deg, torque " << torque << " N m";
+      return contact->solve_load(torque * 1e3 / width_scale(), label.str());
+    }
+
+
+
+    template <int dim>
     void
-    QuasiStatic2D::solve_with_active_set(
-      const bool                             with_gaps,
-      const double                           beta,
-      dealii::TrilinosWrappers::MPI::Vector &u)
+    QuasiStatic<dim>::refine_at_contacts()
     {
-      const dealii::Point<2> centre = geo.disc_centre(0, psi);
-      problem->setup_system([&](dealii::AffineConstraints<double> &c) {
-        // Rigid pins are held in place; elastic pins at their core.
-        const bool rigid =
-          prm.scene.pins == parameters::SceneParameters::PinModel::rigid;
-        for (const auto d : (rigid ? pin_dofs : core_dofs))
-          if (c.can_store_line(d) && !c.is_constrained(d))
-            c.add_line(d);
-        // Load: the crank holes turn rigidly by beta about the disc centre.
-        for (const auto &cell : problem->dof_handler().active_cell_iterators())
-          {
-            if (cell->is_artificial() || cell->material_id() != ids::disc(0))
-              continue;
-            for (const unsigned int v : cell->vertex_indices())
-              for (unsigned int comp = 0; comp < 2; ++comp)
-                {
-                  const auto d = cell->vertex_dof_index(v, comp);
-                  if (!crank_hole_dofs.count(d) || !c.can_store_line(d) ||
-                      c.is_constrained(d))
-                    continue;
-                  const dealii::Tensor<1, 2> r = cell->vertex(v) - centre;
-                  c.add_line(d);
-                  c.set_inhomogeneity(d, beta * (comp == 0 ? -r[1] : r[0]));
-                }
-          }
-        // Active contact nodes: n . u = -gap0, eliminating the dominant
-        // component (the matrix stays SPD).
-        for (const unsigned int i : active)
-          {
-            const SlaveNode   &s = slaves[i];
-            const unsigned int k =
-              std::abs(s.normal[0]) >= std::abs(s.normal[1]) ? 0 : 1;
-            const auto dk = s.dofs[k], dother = s.dofs[1 - k];
-            if (!c.can_store_line(dk) || c.is_constrained(dk))
-              continue;
-            c.add_line(dk);
-            c.add_entry(dk, dother, -s.normal[1 - k] / s.normal[k]);
-            // Elastic pin: + n . u_pin(P) / n_k.
-            for (unsigned int comp = 0; comp < 2; ++comp)
-              for (unsigned int a = 0; a < s.master_weights.size(); ++a)
-                c.add_entry(dk,
-                            s.master_dofs[comp][a],
-                            s.normal[comp] * s.master_weights[a] / s.normal[k]);
-            c.set_inhomogeneity(dk, with_gaps ? -s.gap0 / s.normal[k] : 0.);
-          }
-      });
-      problem->assemble({});
-      last_iterations += problem->solve(
-        prm.contact.linear_solver == "direct" ?
-          elasticity::LinearElasticity<2>::Solver::direct :
-        prm.contact.linear_solver == "cg-amg-translations" ?
-          elasticity::LinearElasticity<2>::Solver::cg_amg_translations_only :
-          elasticity::LinearElasticity<2>::Solver::cg_amg,
-        prm.contact.solver_tolerance);
-      u = problem->solution();
-    }
-
-
-
-    double
-    QuasiStatic2D::reaction_torque(
-      const dealii::TrilinosWrappers::MPI::Vector &f) const
-    {
-      // Torque about the disc centre of the reactions at the load surface,
-      // per unit thickness [N mm / mm].
-      const dealii::Point<2> centre = geo.disc_centre(0, psi);
-      double                 torque = 0;
-      std::set<unsigned int> done;
-      for (const auto &cell : problem->dof_handler().active_cell_iterators())
+      dealii::TimerOutput::Scope t(timer, "refine at contacts");
+      // Cells of any body next to an active node, up to the level that the
+      // a-priori refinements plus the adaptive cycles allow.
+      const unsigned int cap = prm.mesh.global_refinements +
+                               prm.mesh.contact_refinements +
+                               prm.mesh.adaptive_cycles;
+      std::vector<dealii::Point<dim>> points;
+      for (const unsigned int i : contact->active_set())
+        points.push_back(contact->slave_nodes()[i].position);
+      unsigned int flagged = 0;
+      for (const auto &cell : tria.active_cell_iterators())
         {
-          if (!cell->is_locally_owned() || cell->material_id() != ids::disc(0))
+          if (static_cast<unsigned int>(cell->level()) >= cap)
             continue;
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const auto dx = cell->vertex_dof_index(v, 0);
-              const auto dy = cell->vertex_dof_index(v, 1);
-              if (!crank_hole_dofs.count(dx) ||
-                  !problem->locally_owned_dofs().is_element(dx) ||
-                  !done.insert(cell->vertex_index(v)).second)
-                continue;
-              const dealii::Tensor<1, 2> r = cell->vertex(v) - centre;
-              torque += r[0] * f[dy] - r[1] * f[dx];
-            }
+          const auto   c = cell->center();
+          const double r = cell->diameter();
+          for (const auto &p : points)
+            if (p.distance(c) < r)
+              {
+                cell->set_refine_flag();
+                ++flagged;
+                break;
+              }
         }
-      return dealii::Utilities::MPI::sum(torque, comm);
+      if (flagged == 0)
+        return;
+      const auto snapshot = contact->active_set_snapshot();
+      tria.execute_coarsening_and_refinement();
+      setup_system();
+      contact->transfer_active_set(snapshot);
     }
 
 
 
+    template <int dim>
     void
-    QuasiStatic2D::solve(const double                           torque,
-                         postprocess::StiffnessRow             &row,
-                         std::vector<postprocess::PinForceRow> &pins)
+    QuasiStatic<dim>::solve(const double                           torque,
+                            postprocess::StiffnessRow             &row,
+                            std::vector<postprocess::PinForceRow> &pins)
     {
-      const auto   start = std::chrono::steady_clock::now();
-      const double b     = prm.geometry.tooth_width;
-      // Target torque per unit thickness [N mm / mm].
-      const double           target = torque * 1e3 / b;
-      const dealii::Point<2> centre = geo.disc_centre(0, psi);
-
-      // Without a previous state, start from the nodes that the analytical
-      // model's rotation would push into the pins: with no active node the
-      // disc turns freely and the torque cannot fix beta.
-      if (active.empty())
+      const auto start = std::chrono::steady_clock::now();
+      if (!warm)
         {
+          // First state: the nodes that the analytical model's rotation
+          // pushes into the pins (an empty set leaves the discs free).
           const analytic::StageModel model(prm);
-          const double beta_a = model.solve(psi, torque, 0.).rotation;
-          for (unsigned int i = 0; i < slaves.size(); ++i)
-            {
-              const dealii::Tensor<1, 2> r = slaves[i].position - centre;
-              // The rigid rotation moves the node by beta z x r.
-              const double n_dot_u = beta_a * (slaves[i].normal[1] * r[0] -
-                                               slaves[i].normal[0] * r[1]);
-              if (slaves[i].gap0 + n_dot_u < 0)
-                active.insert(i);
-            }
+          const double beta = model.solve(psi, torque, 0.).rotation;
+          contact->initialise_active_set([&](const SlaveNode<dim> &s) {
+            const dealii::Point<2> c = geo.disc_centre(s.body, psi);
+            const double n_dot_u     = beta * (s.normal[1] * (s.position[0] - c[0]) -
+                                           s.normal[0] * (s.position[1] - c[1]));
+            return s.gap0 + n_dot_u < 0;
+          });
+          warm = true;
         }
-
-      dealii::TrilinosWrappers::MPI::Vector u0, u1;
-      dealii::TrilinosWrappers::MPI::Vector f0, f1;
-      double                                beta = 0, t1 = 0;
-      std::vector<std::set<unsigned int>>   history;
-      unsigned int                          it = 0;
-      last_iterations                          = 0;
-      for (;; ++it)
+      ContactState state = solve_state(torque);
+      unsigned int iterations = state.iterations;
+      for (unsigned int cycle = 0; cycle < prm.mesh.adaptive_cycles; ++cycle)
         {
-          AssertThrow(it < prm.contact.max_active_set_iterations,
-                      dealii::ExcMessage(
-                        "quasi-static: the active set did not settle in " +
-                        std::to_string(prm.contact.max_active_set_iterations) +
-                        " iterations (Contact/Maximum active set iterations; "
-                        "torque " +
-                        std::to_string(torque) + " N m)."));
-          solve_with_active_set(true, 0., u0);
-          f0 = problem->internal_forces(u0);
-          solve_with_active_set(false, 1., u1);
-          f1              = problem->internal_forces(u1);
-          const double t0 = reaction_torque(f0);
-          t1              = reaction_torque(f1);
-          beta            = (target - t0) / t1;
-
-          // New active set from the gaps and the multipliers of the owned
-          // slave nodes, then merged over the ranks.
-          std::vector<unsigned int> mine;
-          for (unsigned int i = 0; i < slaves.size(); ++i)
-            {
-              const SlaveNode &s = slaves[i];
-              if (!problem->locally_owned_dofs().is_element(s.dofs[0]))
-                continue;
-              double gap = s.gap0, lambda = 0;
-              for (unsigned int c = 0; c < 2; ++c)
-                {
-                  gap += s.normal[c] * (u0[s.dofs[c]] + beta * u1[s.dofs[c]]);
-                  for (unsigned int a = 0; a < s.master_weights.size(); ++a)
-                    gap -= s.normal[c] * s.master_weights[a] *
-                           (u0[s.master_dofs[c][a]] +
-                            beta * u1[s.master_dofs[c][a]]);
-                  lambda +=
-                    s.normal[c] * (f0[s.dofs[c]] + beta * f1[s.dofs[c]]);
-                }
-              const bool was_active = active.count(i);
-              // lambda + c (-gap) > 0: for an active node gap = 0, for an
-              // inactive one lambda = 0; c only needs the right sign here.
-              if ((was_active && lambda > 0) || (!was_active && gap < 0))
-                mine.push_back(i);
-            }
-          std::set<unsigned int> next;
-          for (const auto &part :
-               dealii::Utilities::MPI::all_gather(comm, mine))
-            next.insert(part.begin(), part.end());
-          if (std::getenv("CYCLOID_DEBUG"))
-            {
-              std::cerr << "it " << it << " beta " << beta << " T0 " << t0
-                        << " T1 " << t1 << " active " << active.size()
-                        << " next " << next.size() << " :";
-              for (const auto i : next)
-                if (!active.count(i))
-                  std::cerr << " +" << i << "(pin " << slaves[i].pin << ")";
-              for (const auto i : active)
-                if (!next.count(i))
-                  std::cerr << " -" << i << "(pin " << slaves[i].pin << ")";
-              std::cerr << std::endl;
-            }
-          if (next == active)
+          const auto n = contact->elasticity().n_dofs();
+          refine_at_contacts();
+          if (contact->elasticity().n_dofs() == n)
             break;
-          AssertThrow(std::find(history.begin(), history.end(), next) ==
-                        history.end(),
-                      dealii::ExcMessage(
-                        "quasi-static: the active set cycles (a set seen "
-                        "before returned at iteration " +
-                        std::to_string(it) + ", torque " +
-                        std::to_string(torque) + " N m)."));
-          history.push_back(active);
-          active = next;
+          state = solve_state(torque);
+          iterations += state.iterations;
         }
-
       {
-        dealii::TrilinosWrappers::MPI::Vector a(problem->locally_owned_dofs(),
-                                                comm),
-          b(problem->locally_owned_dofs(), comm);
-        a = u0;
-        b = u1;
-        a.add(beta, b);
-        u_last.reinit(problem->locally_owned_dofs(),
-                      problem->locally_relevant_dofs(),
-                      comm);
-        u_last = a;
-        a      = f0;
-        b      = f1;
-        a.add(beta, b);
-        f_last.reinit(problem->locally_owned_dofs(),
-                      problem->locally_relevant_dofs(),
-                      comm);
-        f_last = a;
+        dealii::TimerOutput::Scope t(timer, "pin forces");
+        pin_forces(torque, state, row, pins);
       }
+      row.iterations = iterations;
+      row.wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+    }
 
-      // Pin forces from the slave reactions (force of the pin on the disc),
-      // scaled to the tooth width.
-      const unsigned int  zp = prm.geometry.n_pins;
-      std::vector<double> fx(zp, 0.), fy(zp, 0.), moment(zp, 0.);
-      for (const unsigned int i : active)
+
+
+    template <int dim>
+    void
+    QuasiStatic<dim>::pin_forces(const double                           torque,
+                                 const ContactState                    &state,
+                                 postprocess::StiffnessRow             &row,
+                                 std::vector<postprocess::PinForceRow> &pins) const
+    {
+      const double       scale = width_scale();
+      const unsigned int zp    = prm.geometry.n_pins;
+      const unsigned int nd    = prm.scene.n_discs;
+      const auto        &slaves    = contact->slave_nodes();
+      const auto        &reactions = contact->slave_reactions();
+      // Force of each pin on each disc and its moment about the disc centre.
+      std::vector<double> fx(nd * zp, 0.), fy(nd * zp, 0.), moment(nd * zp, 0.);
+      for (const unsigned int i : contact->active_set())
         {
-          const SlaveNode &s = slaves[i];
-          if (!problem->locally_owned_dofs().is_element(s.dofs[0]))
-            continue;
-          const double               gx = f0[s.dofs[0]] + beta * f1[s.dofs[0]];
-          const double               gy = f0[s.dofs[1]] + beta * f1[s.dofs[1]];
-          const dealii::Tensor<1, 2> r  = s.position - centre;
-          fx[s.pin] += gx * b;
-          fy[s.pin] += gy * b;
-          moment[s.pin] += (r[0] * gy - r[1] * gx) * b;
+          const auto            &s = slaves[i];
+          const unsigned int     k = s.body * zp + s.cylinder;
+          const dealii::Point<2> c = geo.disc_centre(s.body, psi);
+          const double gx = reactions[i][0] * scale, gy = reactions[i][1] * scale;
+          fx[k] += gx;
+          fy[k] += gy;
+          moment[k] += (s.position[0] - c[0]) * gy - (s.position[1] - c[1]) * gx;
         }
-      dealii::Utilities::MPI::sum(fx, comm, fx);
-      dealii::Utilities::MPI::sum(fy, comm, fy);
-      dealii::Utilities::MPI::sum(moment, comm, moment);
 
       row.torque_Nm          = torque;
-      row.rotation_rad       = beta;
-      row.k_tangent          = t1 * b * 1e-3;
-      row.k_secant           = torque / beta;
-      row.iterations         = it + 1;
-      row.dofs               = problem->n_dofs();
+      row.rotation_rad       = state.beta;
+      row.k_tangent          = state.tangent * scale * 1e-3;
+      row.k_secant           = torque / state.beta;
+      row.dofs               = contact->elasticity().n_dofs();
       row.reaction_torque_Nm = 0;
       row.pins_in_contact    = 0;
       row.max_pin_force_N    = 0;
       pins.clear();
-      const auto contacts = geo.pin_contacts(0, psi);
       // Rigid take-up (lost motion) of the exact geometry, as in the
-      // analytical model: the rotation that closes the first clearance.
+      // analytical model: the rotation that closes the first clearance of
+      // any disc.
       double takeup = std::numeric_limits<double>::max();
-      for (const auto &c : contacts)
-        if ((torque >= 0 ? c.arm : -c.arm) > 1e-9)
-          takeup =
-            std::min(takeup, std::max(c.clearance, 0.) / std::abs(c.arm));
-      row.takeup_rad       = (torque >= 0 ? 1. : -1.) * takeup;
-      row.k_secant_elastic = torque / (beta - row.takeup_rad);
-      for (unsigned int j = 0; j < zp; ++j)
+      std::vector<std::vector<geometry::PinContact>> contacts;
+      for (unsigned int d = 0; d < nd; ++d)
         {
-          postprocess::PinForceRow p;
-          p.disc = 0;
-          p.pin  = j;
-          p.fx_N = fx[j] + 0.;
-          p.fy_N = fy[j] + 0.;
-          p.fn_N = std::hypot(fx[j], fy[j]);
-          // Moment of the pin's force about the disc centre resists a
-          // positive torque: arm = -(r x F)/|F| with F on the disc.
-          p.arm_mm       = p.fn_N > 0 ? -moment[j] / p.fn_N : contacts[j].arm;
-          p.clearance_um = contacts[j].clearance * 1e3;
-          p.phase_deg    = contacts[j].phase * 180. / dealii::numbers::PI;
-          p.contact_x_mm = contacts[j].contact_point[0];
-          p.contact_y_mm = contacts[j].contact_point[1];
-          // Contact half-width: half the arc between the outermost active
-          // nodes of this pin, plus half a node spacing on each side.
+          contacts.push_back(geo.pin_contacts(d, psi));
+          for (const auto &c : contacts.back())
+            if ((torque >= 0 ? c.arm : -c.arm) > 1e-9)
+              takeup =
+                std::min(takeup, std::max(c.clearance, 0.) / std::abs(c.arm));
+        }
+      row.takeup_rad       = (torque >= 0 ? 1. : -1.) * takeup;
+      row.k_secant_elastic = torque / (state.beta - row.takeup_rad);
+      for (unsigned int d = 0; d < nd; ++d)
+        for (unsigned int j = 0; j < zp; ++j)
           {
-            double                 lo = 1e300, hi = -1e300, spacing = 1e300;
-            const dealii::Point<2> c = geo.pin_centre(j);
-            const double a0 = std::atan2(contacts[j].contact_point[1] - c[1],
-                                         contacts[j].contact_point[0] - c[0]);
-            std::vector<double> angles;
-            for (const SlaveNode &s : slaves)
-              if (s.pin == j)
+            const unsigned int        k = d * zp + j;
+            const auto               &pc = contacts[d][j];
+            postprocess::PinForceRow p;
+            p.disc = d;
+            p.pin  = j;
+            p.fx_N = fx[k] + 0.;
+            p.fy_N = fy[k] + 0.;
+            p.fn_N = std::hypot(fx[k], fy[k]);
+            // The pin's force on the disc resists a positive torque:
+            // arm = -(r x F)/|F|.
+            p.arm_mm       = p.fn_N > 0 ? -moment[k] / p.fn_N : pc.arm;
+            p.clearance_um = pc.clearance * 1e3;
+            p.phase_deg    = pc.phase * 180. / dealii::numbers::PI;
+            p.contact_x_mm = pc.contact_point[0];
+            p.contact_y_mm = pc.contact_point[1];
+            p.approach_um  = (state.beta * pc.arm - pc.clearance) * 1e3;
+            // Contact half-width: half the arc between the outermost active
+            // nodes of this pair, plus half a node spacing on each side.
+            const dealii::Point<2> c  = geo.pin_centre(j);
+            const double           a0 = std::atan2(pc.contact_point[1] - c[1],
+                                         pc.contact_point[0] - c[0]);
+            const auto angle = [&](const SlaveNode<dim> &s) {
+              return std::remainder(std::atan2(s.position[1] - c[1],
+                                               s.position[0] - c[0]) -
+                                      a0,
+                                    2. * dealii::numbers::PI);
+            };
+            double lo = 1e300, hi = -1e300, spacing = 1e300;
+            for (const unsigned int i : contact->active_set())
+              if (slaves[i].body == d && slaves[i].cylinder == j)
                 {
-                  double a =
-                    std::atan2(s.position[1] - c[1], s.position[0] - c[0]) - a0;
-                  a = std::remainder(a, 2. * dealii::numbers::PI);
-                  angles.push_back(a);
-                }
-            for (const unsigned int i : active)
-              if (slaves[i].pin == j)
-                {
-                  double a = std::atan2(slaves[i].position[1] - c[1],
-                                        slaves[i].position[0] - c[0]) -
-                             a0;
-                  a  = std::remainder(a, 2. * dealii::numbers::PI);
-                  lo = std::min(lo, a);
-                  hi = std::max(hi, a);
+                  lo = std::min(lo, angle(slaves[i]));
+                  hi = std::max(hi, angle(slaves[i]));
                 }
             if (hi >= lo)
               {
-                for (const double a : angles)
-                  if (a > hi || a < lo)
-                    spacing =
-                      std::min(spacing,
-                               std::min(std::abs(a - hi), std::abs(a - lo)));
+                for (const auto &s : slaves)
+                  if (s.body == d && s.cylinder == j)
+                    {
+                      const double a = angle(s);
+                      if (a > hi + 1e-12 || a < lo - 1e-12)
+                        spacing = std::min(
+                          spacing, std::min(std::abs(a - hi), std::abs(a - lo)));
+                    }
                 if (spacing > 1e200)
                   spacing = 0;
                 p.contact_halfwidth_um = 1e3 * prm.geometry.pin_radius *
                                          (0.5 * (hi - lo) + 0.5 * spacing);
               }
             p.hertz_halfwidth_um =
-              1e3 *
-              analytic::hertz_half_width(
-                p.fn_N,
-                b,
-                prm.geometry.pin_radius,
-                contacts[j].curvature_radius,
-                prm.material.disc.plane_strain_modulus(),
-                prm.scene.pins == parameters::SceneParameters::PinModel::rigid ?
-                  0. :
-                  prm.material.pin.plane_strain_modulus());
+              1e3 * analytic::hertz_half_width(
+                      p.fn_N,
+                      prm.geometry.tooth_width,
+                      prm.geometry.pin_radius,
+                      pc.curvature_radius,
+                      prm.material.disc.plane_strain_modulus(),
+                      prm.scene.pins == Scene::PinModel::rigid ?
+                        0. :
+                        prm.material.pin.plane_strain_modulus());
+            row.reaction_torque_Nm += p.fn_N * p.arm_mm * 1e-3;
+            if (p.fn_N > 0)
+              ++row.pins_in_contact;
+            row.max_pin_force_N = std::max(row.max_pin_force_N, p.fn_N);
+            pins.push_back(p);
           }
-          row.reaction_torque_Nm += p.fn_N * p.arm_mm * 1e-3;
-          if (p.fn_N > 0)
-            ++row.pins_in_contact;
-          row.max_pin_force_N = std::max(row.max_pin_force_N, p.fn_N);
-          pins.push_back(p);
-        }
-      row.wall_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-          .count();
     }
-  } // namespace contact
-} // namespace cycloid
 
 
 
-namespace cycloid
-{
-  namespace contact
-  {
-    namespace
-    {
-      /** Von Mises stress of the displacement field, per body material
-       * (plane strain: sigma_zz = lambda tr(eps)). */
-      class VonMises : public dealii::DataPostprocessorScalar<2>
-      {
-      public:
-        explicit VonMises(const parameters::AllParameters &prm)
-          : dealii::DataPostprocessorScalar<2>("von_Mises",
-                                               dealii::update_gradients)
-          , prm(prm)
-        {}
-
-        void
-        evaluate_vector_field(
-          const dealii::DataPostprocessorInputs::Vector<2> &inputs,
-          std::vector<dealii::Vector<double>> &computed) const override
-        {
-          const auto   cell = inputs.template get_cell<2>();
-          const auto  &m    = mesh::ids::is_pin(cell->material_id()) ?
-                                prm.material.pin :
-                                prm.material.disc;
-          const double E = m.youngs_modulus, nu = m.poissons_ratio;
-          const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-          const double mu     = E / (2 * (1 + nu));
-          for (unsigned int q = 0; q < computed.size(); ++q)
-            {
-              const auto  &g   = inputs.solution_gradients[q];
-              const double e00 = g[0][0], e11 = g[1][1],
-                           e01 = 0.5 * (g[0][1] + g[1][0]);
-              const double tr  = e00 + e11;
-              const double s00 = lambda * tr + 2 * mu * e00;
-              const double s11 = lambda * tr + 2 * mu * e11;
-              const double s22 = lambda * tr;
-              const double s01 = 2 * mu * e01;
-              computed[q](0)   = std::sqrt(0.5 * ((s00 - s11) * (s00 - s11) +
-                                                (s11 - s22) * (s11 - s22) +
-                                                (s22 - s00) * (s22 - s00)) +
-                                         3 * s01 * s01);
-            }
-        }
-
-      private:
-        const parameters::AllParameters &prm;
-      };
-    } // namespace
-
-
-
+    template <int dim>
     void
-    QuasiStatic2D::output_results(const unsigned int step)
+    QuasiStatic<dim>::output_results(const unsigned int step)
     {
-      // Nodal fields of the contact: the reaction at active slave nodes
-      // (force per unit thickness, N/mm) and the active flag.
-      dealii::TrilinosWrappers::MPI::Vector force(problem->locally_owned_dofs(),
-                                                  comm),
-        flag(problem->locally_owned_dofs(), comm);
-      for (const unsigned int i : active)
-        for (unsigned int c = 0; c < 2; ++c)
-          if (problem->locally_owned_dofs().is_element(slaves[i].dofs[c]))
-            {
-              force[slaves[i].dofs[c]] = f_last[slaves[i].dofs[c]];
-              flag[slaves[i].dofs[c]]  = 1.;
-            }
-      force.compress(dealii::VectorOperation::insert);
-      flag.compress(dealii::VectorOperation::insert);
-      dealii::TrilinosWrappers::MPI::Vector force_g(
-        problem->locally_owned_dofs(), problem->locally_relevant_dofs(), comm),
-        flag_g(problem->locally_owned_dofs(),
-               problem->locally_relevant_dofs(),
-               comm);
-      force_g = force;
-      flag_g  = flag;
-
-      dealii::DataOut<2> data_out;
-      data_out.attach_dof_handler(problem->dof_handler());
-      const std::vector<
-        dealii::DataComponentInterpretation::DataComponentInterpretation>
-        vector(
-          2, dealii::DataComponentInterpretation::component_is_part_of_vector);
-      data_out.add_data_vector(u_last,
-                               std::vector<std::string>(2, "displacement"),
-                               dealii::DataOut<2>::type_dof_data,
-                               vector);
-      data_out.add_data_vector(force_g,
-                               std::vector<std::string>(2, "contact_force"),
-                               dealii::DataOut<2>::type_dof_data,
-                               vector);
-      data_out.add_data_vector(flag_g,
-                               std::vector<std::string>(2, "active_set"),
-                               dealii::DataOut<2>::type_dof_data,
-                               vector);
-      const VonMises von_mises(prm);
-      data_out.add_data_vector(u_last, von_mises);
-      dealii::Vector<float> body(tria.n_active_cells()),
-        rank(tria.n_active_cells());
-      for (const auto &cell : tria.active_cell_iterators())
+      dealii::TimerOutput::Scope t(timer, "output results");
+      const std::string name = "solution-" + dealii::Utilities::int_to_string(step, 4);
+      contact->write_vtu(prm.run.output_directory, name);
+      if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
         {
-          body(cell->active_cell_index()) = cell->material_id();
-          rank(cell->active_cell_index()) = cell->subdomain_id();
-        }
-      data_out.add_data_vector(body, "body_id");
-      data_out.add_data_vector(rank, "mpi_rank");
-      data_out.build_patches(problem->mapping(), 1);
-
-      const std::string  number = dealii::Utilities::int_to_string(step, 4);
-      const std::string  name   = "solution-" + number;
-      const unsigned int r = dealii::Utilities::MPI::this_mpi_process(comm);
-      {
-        std::ofstream out(prm.run.output_directory + "/" + name + "." +
-                          dealii::Utilities::int_to_string(r, 4) + ".vtu");
-        data_out.write_vtu(out);
-      }
-      if (r == 0)
-        {
-          std::vector<std::string> pieces;
-          for (unsigned int k = 0;
-               k < dealii::Utilities::MPI::n_mpi_processes(comm);
-               ++k)
-            pieces.push_back(name + "." +
-                             dealii::Utilities::int_to_string(k, 4) + ".vtu");
-          std::ofstream pvtu(prm.run.output_directory + "/" + name + ".pvtu");
-          data_out.write_pvtu_record(pvtu, pieces);
           written.emplace_back(step, name + ".pvtu");
           std::ofstream pvd(prm.run.output_directory + "/solution.pvd");
           dealii::DataOutBase::write_pvd_record(pvd, written);
         }
     }
+
+
+
+    template class QuasiStatic<2>;
+    template class QuasiStatic<3>;
   } // namespace contact
 } // namespace cycloid

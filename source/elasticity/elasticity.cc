@@ -39,8 +39,7 @@ namespace cycloid
 
     template <int dim>
     void
-    LinearElasticity<dim>::setup_system(
-      const std::function<void(dealii::AffineConstraints<double> &)> &constrain)
+    LinearElasticity<dim>::distribute_dofs()
     {
       dofs.distribute_dofs(fe);
       locally_owned = dofs.locally_owned_dofs();
@@ -49,27 +48,70 @@ namespace cycloid
         {
           std::vector<dealii::types::global_dof_index> extra = extra_relevant;
           std::sort(extra.begin(), extra.end());
+          extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
           locally_relevant.add_indices(extra.begin(), extra.end());
         }
+      hanging_all.clear();
+      dealii::DoFTools::make_hanging_node_constraints(dofs, hanging_all);
+      hanging_all.close();
+      ready = Ready::none;
+    }
 
-      all_constraints.clear();
-      all_constraints.reinit(locally_relevant);
-      dealii::DoFTools::make_hanging_node_constraints(dofs, all_constraints);
-      constrain(all_constraints);
-      all_constraints.close();
+
+
+    template <int dim>
+    void
+    LinearElasticity<dim>::setup_constraints(
+      const std::vector<
+        std::function<void(dealii::AffineConstraints<double> &)>> &sets)
+    {
+      AssertThrow(!sets.empty(), dealii::ExcInternalError());
+      // The extra relevant DoFs may have changed since distribute_dofs().
+      dealii::DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant);
+      if (!extra_relevant.empty())
+        {
+          std::vector<dealii::types::global_dof_index> extra = extra_relevant;
+          std::sort(extra.begin(), extra.end());
+          extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+          locally_relevant.add_indices(extra.begin(), extra.end());
+        }
+      constraint_sets.clear();
+      constraint_sets.resize(sets.size());
+      for (unsigned int k = 0; k < sets.size(); ++k)
+        {
+          auto &c = constraint_sets[k];
+          c.reinit(locally_relevant);
+          dealii::DoFTools::make_hanging_node_constraints(dofs, c);
+          sets[k](c);
+          c.close();
+        }
 
       dealii::DynamicSparsityPattern dsp(locally_relevant);
       dealii::DoFTools::make_sparsity_pattern(dofs,
                                               dsp,
-                                              all_constraints,
+                                              constraint_sets[0],
                                               false);
       dealii::SparsityTools::distribute_sparsity_pattern(dsp,
                                                          locally_owned,
                                                          comm,
                                                          locally_relevant);
       system_matrix.reinit(locally_owned, locally_owned, dsp, comm);
-      system_rhs.reinit(locally_owned, comm);
+      rhs_sets.resize(sets.size());
+      for (auto &rhs : rhs_sets)
+        rhs.reinit(locally_owned, comm);
       locally_relevant_solution.reinit(locally_owned, locally_relevant, comm);
+      ready = Ready::none;
+    }
+
+
+
+    template <int dim>
+    void
+    LinearElasticity<dim>::setup_system(
+      const std::function<void(dealii::AffineConstraints<double> &)> &constrain)
+    {
+      distribute_dofs();
+      setup_constraints({constrain});
     }
 
 
@@ -80,8 +122,20 @@ namespace cycloid
       const std::map<dealii::types::boundary_id, const dealii::Function<dim> *>
         &tractions)
     {
+      assemble_sets(tractions);
+    }
+
+
+
+    template <int dim>
+    void
+    LinearElasticity<dim>::assemble_sets(
+      const std::map<dealii::types::boundary_id, const dealii::Function<dim> *>
+        &tractions)
+    {
       system_matrix = 0;
-      system_rhs    = 0;
+      for (auto &rhs : rhs_sets)
+        rhs = 0;
       const dealii::QGauss<dim>     quadrature(fe.degree + 1);
       const dealii::QGauss<dim - 1> face_quadrature(fe.degree + 1);
       dealii::FEValues<dim>         fe_values(*map,
@@ -97,7 +151,7 @@ namespace cycloid
           dealii::update_JxW_values);
       const unsigned int         dofs_per_cell = fe.n_dofs_per_cell();
       dealii::FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
-      dealii::Vector<double>     cell_rhs(dofs_per_cell);
+      dealii::Vector<double>     cell_rhs(dofs_per_cell), cell_rhs_k;
       std::vector<dealii::types::global_dof_index> indices(dofs_per_cell);
       const dealii::FEValuesExtractors::Vector     u(0);
       std::vector<dealii::SymmetricTensor<2, dim>> eps(dofs_per_cell);
@@ -159,11 +213,23 @@ namespace cycloid
                   }
               }
           cell->get_dof_indices(indices);
-          all_constraints.distribute_local_to_global(
-            cell_matrix, cell_rhs, indices, system_matrix, system_rhs);
+          // Sets k > 0 share the matrix; their inhomogeneities enter the
+          // right-hand side through the local matrix.
+          for (unsigned int k = 1; k < constraint_sets.size(); ++k)
+            {
+              cell_rhs_k = cell_rhs;
+              constraint_sets[k].distribute_local_to_global(cell_rhs_k,
+                                                            indices,
+                                                            rhs_sets[k],
+                                                            cell_matrix);
+            }
+          constraint_sets[0].distribute_local_to_global(
+            cell_matrix, cell_rhs, indices, system_matrix, rhs_sets[0]);
         }
       system_matrix.compress(dealii::VectorOperation::add);
-      system_rhs.compress(dealii::VectorOperation::add);
+      for (auto &rhs : rhs_sets)
+        rhs.compress(dealii::VectorOperation::add);
+      ready = Ready::none;
     }
 
 
@@ -284,40 +350,64 @@ namespace cycloid
     unsigned int
     LinearElasticity<dim>::solve(const Solver solver, const double tolerance)
     {
+      return solve_set(0, solver, tolerance, locally_relevant_solution);
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    LinearElasticity<dim>::solve_set(const unsigned int k,
+                                     const Solver       solver,
+                                     const double       tolerance,
+                                     dealii::TrilinosWrappers::MPI::Vector &u)
+    {
+      AssertThrow(k < rhs_sets.size(), dealii::ExcInternalError());
+      const auto &rhs = rhs_sets[k];
       dealii::TrilinosWrappers::MPI::Vector x(locally_owned, comm);
       unsigned int                          iterations = 0;
       if (solver == Solver::direct)
         {
-          dealii::SolverControl                  control(1, 0);
-          dealii::TrilinosWrappers::SolverDirect direct(control);
-          direct.solve(system_matrix, x, system_rhs);
+          if (ready != Ready::direct)
+            {
+              direct_control = std::make_unique<dealii::SolverControl>(1, 0);
+              direct = std::make_unique<dealii::TrilinosWrappers::SolverDirect>(
+                *direct_control);
+              direct->initialize(system_matrix);
+              ready = Ready::direct;
+            }
+          direct->solve(x, rhs);
         }
       else
         {
-          // ML with a user-given near-null space (deal.II 9.4 has no
-          // extract_rigid_body_modes): translations and, unless asked
-          // otherwise, rotations.
-          dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
-          data.elliptic              = true;
-          data.higher_order_elements = fe.degree > 1;
-          data.smoother_sweeps       = 2;
-          data.aggregation_threshold = 0.02;
-          Teuchos::ParameterList              parameters;
-          std::unique_ptr<Epetra_MultiVector> unused;
-          data.set_parameters(parameters, unused, system_matrix);
-          null_space = rigid_body_modes(solver == Solver::cg_amg);
-          parameters.set("null space: type", "pre-computed");
-          parameters.set("null space: dimension", null_space->NumVectors());
-          parameters.set("null space: vectors", null_space->Values());
-          amg.initialize(system_matrix, parameters);
-
+          if (ready != Ready::amg)
+            {
+              // ML with a user-given near-null space (deal.II 9.4 has no
+              // extract_rigid_body_modes): translations and, unless asked
+              // otherwise, rotations.
+              dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
+              data.elliptic              = true;
+              data.higher_order_elements = fe.degree > 1;
+              data.smoother_sweeps       = 2;
+              data.aggregation_threshold = 0.02;
+              Teuchos::ParameterList              parameters;
+              std::unique_ptr<Epetra_MultiVector> unused;
+              data.set_parameters(parameters, unused, system_matrix);
+              null_space = rigid_body_modes(solver == Solver::cg_amg);
+              parameters.set("null space: type", "pre-computed");
+              parameters.set("null space: dimension",
+                             null_space->NumVectors());
+              parameters.set("null space: vectors", null_space->Values());
+              amg.initialize(system_matrix, parameters);
+              ready = Ready::amg;
+            }
           dealii::SolverControl control(
-            std::max<unsigned int>(1000, system_rhs.size() / 10),
-            tolerance * system_rhs.l2_norm());
+            std::max<unsigned int>(1000, rhs.size() / 10),
+            tolerance * rhs.l2_norm());
           dealii::SolverCG<dealii::TrilinosWrappers::MPI::Vector> cg(control);
           try
             {
-              cg.solve(system_matrix, x, system_rhs, amg);
+              cg.solve(system_matrix, x, rhs, amg);
             }
           catch (const dealii::SolverControl::NoConvergence &e)
             {
@@ -331,9 +421,61 @@ namespace cycloid
             }
           iterations = control.last_step();
         }
-      all_constraints.distribute(x);
-      locally_relevant_solution = x;
+      constraint_sets[k].distribute(x);
+      u.reinit(locally_owned, locally_relevant, comm);
+      u = x;
       return iterations;
+    }
+
+
+
+    template <int dim>
+    std::pair<double, double>
+    LinearElasticity<dim>::residual_norms(
+      const dealii::TrilinosWrappers::MPI::Vector &u,
+      const unsigned int                           k) const
+    {
+      dealii::TrilinosWrappers::MPI::Vector r(locally_owned, comm),
+        f(locally_owned, comm);
+      const dealii::QGauss<dim>                    quadrature(fe.degree + 1);
+      dealii::FEValues<dim>                        fe_values(*map,
+                                      fe,
+                                      quadrature,
+                                      dealii::update_gradients |
+                                        dealii::update_JxW_values);
+      const unsigned int                           n = fe.n_dofs_per_cell();
+      dealii::Vector<double>                       cell_f(n);
+      std::vector<dealii::types::global_dof_index> indices(n);
+      const dealii::FEValuesExtractors::Vector     disp(0);
+      std::vector<dealii::SymmetricTensor<2, dim>> strain(quadrature.size());
+      for (const auto &cell : dofs.active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          const auto  &m = materials.at(cell->material_id());
+          const double E = m.youngs_modulus, nu = m.poissons_ratio;
+          const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+          const double mu     = E / (2 * (1 + nu));
+          fe_values.reinit(cell);
+          fe_values[disp].get_function_symmetric_gradients(u, strain);
+          cell_f = 0;
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              const dealii::SymmetricTensor<2, dim> sigma =
+                lambda * dealii::trace(strain[q]) *
+                  dealii::unit_symmetric_tensor<dim>() +
+                2 * mu * strain[q];
+              for (unsigned int i = 0; i < n; ++i)
+                cell_f(i) += sigma * fe_values[disp].symmetric_gradient(i, q) *
+                             fe_values.JxW(q);
+            }
+          cell->get_dof_indices(indices);
+          f.add(indices, cell_f);
+          constraint_sets.at(k).distribute_local_to_global(cell_f, indices, r);
+        }
+      f.compress(dealii::VectorOperation::add);
+      r.compress(dealii::VectorOperation::add);
+      return {r.l2_norm(), f.l2_norm()};
     }
 
 

@@ -65,6 +65,21 @@ namespace cycloid
                           "0.5",
                           Double(0),
                           "Radius of the a-priori contact refinement [mm].");
+        prm.declare_entry("Polynomial degree",
+                          "1",
+                          Integer(1, 2),
+                          "Degree p of the Q_p displacement elements (and of "
+                          "the mapping that follows the exact curves) [-]. "
+                          "Contact nodes are all support points of the "
+                          "flank faces (tensor-product Q2 face weights are "
+                          "positive, so node-based contact stays valid).");
+        prm.declare_entry("Adaptive refinement cycles",
+                          "0",
+                          Integer(0, 10),
+                          "Quasi-static FE runs: after solving a state, refine "
+                          "the cells (of every body) next to the active "
+                          "contact nodes and solve again, this many times "
+                          "[-]. Adds to the a-priori Contact refinements.");
         prm.declare_entry("Write msh",
                           "false",
                           Bool(),
@@ -93,6 +108,8 @@ namespace cycloid
         contact_refinements       = prm.get_integer("Contact refinements");
         contact_refinement_radius = prm.get_double("Contact refinement radius");
         write_msh                 = prm.get_bool("Write msh");
+        degree                    = prm.get_integer("Polynomial degree");
+        adaptive_cycles = prm.get_integer("Adaptive refinement cycles");
       }
       prm.leave_subsection();
       AssertThrow(contact_size <= flank_size && flank_size <= coarse_size,

@@ -1,19 +1,19 @@
 #ifndef cycloid_contact_quasi_static_h
 #define cycloid_contact_quasi_static_h
 
-#include <deal.II/base/point.h>
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
 #include <deal.II/distributed/shared_tria.h>
-#include <deal.II/lac/trilinos_vector.h>
 
-#include <cycloid/elasticity/elasticity.h>
+#include <cycloid/contact/contact_problem.h>
 #include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/parameters/all_parameters.h>
 #include <cycloid/postprocess/result_writer.h>
 
-#include <map>
-#include <set>
+#include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace cycloid
@@ -21,104 +21,88 @@ namespace cycloid
   namespace contact
   {
     /**
-     * @brief One slave node of the node-to-surface contact: a vertex of a
-     * disc's tooth flank, paired with its nearest pin.
-     */
-    struct SlaveNode
-    {
-      /** Disc and pin. */
-      unsigned int disc, pin;
-      /** DoF indices of its dim displacement components. */
-      std::vector<dealii::types::global_dof_index> dofs;
-      /** Reference position [mm]. */
-      dealii::Point<2> position;
-      /** Unit normal of the pin surface at the closest point, pointing from
-       * the pin into the disc. */
-      dealii::Tensor<1, 2> normal;
-      /** Initial gap to the pin's exact cylinder [mm]. */
-      double gap0;
-      /** Elastic pins: the pin-surface DoFs (x and y of the two vertices
-       * of the pin edge that holds the projection of the node) and their
-       * interpolation weights. Empty for rigid pins. */
-      std::vector<dealii::types::global_dof_index> master_dofs[2];
-      std::vector<double>                          master_weights;
-    };
-
-    /**
-     * @brief Quasi-static frictionless contact between one disc (2D, plane
-     * strain) and rigid or elastic pins, by a primal-dual active set on the
-     * flank vertices (work in progress for issue #4: 2D, Q1).
+     * @brief Quasi-static FE contact of the cycloid stage at one crank
+     * angle: the scene's discs (1 or 2; 2D plane strain or 3D) against its
+     * pins (rigid, or elastic and held at their cores or in a meshed
+     * housing), loaded by a rigid rotation beta of each disc's crank holes
+     * (or bore) about the disc's centre, one beta for both discs, at a
+     * target output torque. Wraps a ContactProblem (node-to-surface
+     * primal-dual active set) with the stage's geometry, supports, load
+     * and post-processing.
      *
-     * Elastic pins are held at their rigid core (all DoFs within `Pin core
-     * radius` of the axis); the constraint of an active node then couples
-     * the disc node to the pin surface: n . (u_s - u_pin(P)) = -gap0, with
-     * u_pin interpolated on the pin edge that holds the node's projection P
-     * onto the exact pin cylinder (node-to-surface; the pin DoFs it refers
-     * to are ghosted on every rank).
+     * Stages, each timed (step-42's layout): make_grid(), setup_system()
+     * (DoFs, contact nodes, supports, load), solve_state(),
+     * refine_at_contacts() (adaptive cycles), pin_forces() and
+     * output_results().
      *
-     * Per active-set iteration, the active slave nodes' normal gap is held
-     * at zero by an affine constraint that eliminates the node's dominant
-     * displacement component (step-41/42 style), which keeps the matrix SPD
-     * for CG+AMG. The load is a rigid rotation beta of the crank holes about
-     * the disc centre; for a fixed active set the solution is affine in
-     * beta, so two solves (gaps with beta = 0; no gaps with beta = 1) give
-     * the beta that carries the target torque. The contact force at a slave
-     * node is its internal force (the constraint's reaction), the pressure
-     * multiplier lambda = n . f_int; the set is updated with
-     * lambda + c (-gap) > 0 and the iteration stops when it no longer
-     * changes. A set seen before (other than the last one) is cycling and
-     * ends the run with an error.
+     * Pin supports:
+     * - `axis` (default): every DoF within `Pin core radius` of a pin's
+     *   axis is held (a rigid core; a line or point constraint would make
+     *   the pin's compliance mesh dependent);
+     * - `housing`: the housing ring is meshed, its outer surface is held and
+     *   each groove (seat) node is glued to its pin's surface in every
+     *   component (no slip in the seat; a frictionless seat would leave
+     *   each pin free to spin about its axis).
+     * Rigid pins hold every pin DoF. Forces and torques are reported for
+     * the whole tooth width (2D results are per unit thickness internally).
      */
-    class QuasiStatic2D
+    template <int dim>
+    class QuasiStatic
     {
     public:
-      /** Build the mesh of the scene at crank angle @p psi. */
-      QuasiStatic2D(const parameters::AllParameters &parameters,
-                    const double                     psi,
-                    const MPI_Comm                   comm);
+      /** Build the mesh of the scene at crank angle @p psi [rad] and the
+       * contact problem on it. */
+      QuasiStatic(const parameters::AllParameters &parameters,
+                  const double                     psi,
+                  const MPI_Comm                   comm);
 
-      /** Solve for output torque @p torque [N m of the whole disc width];
-       * fills the rows for the CSV files. */
+      /** Print the timing summary (rank 0). */
+      ~QuasiStatic();
+
+      /**
+       * Solve for output torque @p torque [N m] (warm-started from the
+       * previous state, or from the analytical model for the first), with
+       * `Mesh/Adaptive refinement cycles` refinements at the active
+       * contact; fill the CSV rows.
+       */
       void
       solve(const double                           torque,
             postprocess::StiffnessRow             &row,
             std::vector<postprocess::PinForceRow> &pins);
 
-      /**
-       * Write the last solved state as solution-NNNN.pvtu (+ one .vtu per
-       * rank) with displacement, von Mises stress, contact force and active
-       * flag of the slave nodes, body id and MPI rank, and rewrite
-       * solution.pvd; @p step numbers the state.
-       */
+      /** Write solution-NNNN.pvtu for state @p step and rewrite
+       * solution.pvd. */
       void
       output_results(const unsigned int step);
 
     private:
       void
-      find_slave_nodes();
+      make_grid();
       void
-      solve_with_active_set(const bool                             with_gaps,
-                            const double                           beta,
-                            dealii::TrilinosWrappers::MPI::Vector &u);
-      double
-      reaction_torque(const dealii::TrilinosWrappers::MPI::Vector &f_int) const;
+      setup_system();
+      ContactState
+      solve_state(const double torque);
+      void
+      refine_at_contacts();
+      void
+      pin_forces(const double                           torque,
+                 const ContactState                    &state,
+                 postprocess::StiffnessRow             &row,
+                 std::vector<postprocess::PinForceRow> &pins) const;
 
-      const parameters::AllParameters                             prm;
-      const MPI_Comm                                              comm;
-      const double                                                psi;
-      const geometry::CycloidGeometry                             geo;
-      dealii::parallel::shared::Triangulation<2>                  tria;
-      std::unique_ptr<elasticity::LinearElasticity<2>>            problem;
-      std::map<dealii::types::global_dof_index, dealii::Point<2>> points;
-      std::vector<SlaveNode>                                      slaves;
-      std::set<unsigned int>                                      active;
-      std::set<dealii::types::global_dof_index> crank_hole_dofs;
-      std::set<dealii::types::global_dof_index> pin_dofs;
-      std::set<dealii::types::global_dof_index> core_dofs;
-      unsigned int                              last_iterations = 0;
-      /** Last solved state: displacement and internal forces (ghosted). */
-      dealii::TrilinosWrappers::MPI::Vector u_last, f_last;
-      /** (state, file) of the written solutions, for the .pvd record. */
+      /** Force scale from the model to the stage: b in 2D, 1 in 3D. */
+      double
+      width_scale() const;
+
+      const parameters::AllParameters            prm;
+      const MPI_Comm                             comm;
+      const double                               psi;
+      const geometry::CycloidGeometry            geo;
+      dealii::ConditionalOStream                 pcout;
+      mutable dealii::TimerOutput                timer;
+      dealii::parallel::shared::Triangulation<dim> tria;
+      std::unique_ptr<ContactProblem<dim>>       contact;
+      bool                                       warm = false;
       std::vector<std::pair<double, std::string>> written;
     };
   } // namespace contact

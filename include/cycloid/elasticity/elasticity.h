@@ -10,7 +10,9 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -19,6 +21,8 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include <Epetra_MultiVector.h>
 
@@ -26,6 +30,18 @@ namespace cycloid
 {
   namespace elasticity
   {
+    /** @brief Linear solver of an elasticity system. */
+    enum class LinearSolver
+    {
+      /** CG preconditioned with ML AMG given the rigid-body modes. */
+      cg_amg,
+      /** CG with ML AMG given only the translations (for studies: how
+       * much the rotations matter). */
+      cg_amg_translations_only,
+      /** Direct sparse solver (Amesos KLU). */
+      direct
+    };
+
     /**
      * @brief Small-strain linear elasticity of several bodies, each with its
      * own isotropic material (by material id), on a parallel triangulation:
@@ -47,17 +63,8 @@ namespace cycloid
     class LinearElasticity
     {
     public:
-      /** Linear solver. */
-      enum class Solver
-      {
-        /** CG preconditioned with ML AMG given the rigid-body modes. */
-        cg_amg,
-        /** CG with ML AMG given only the translations (for studies: how
-         * much the rotations matter). */
-        cg_amg_translations_only,
-        /** Direct sparse solver (Amesos KLU). */
-        direct
-      };
+      /** Linear solver (see elasticity::LinearSolver). */
+      using Solver = LinearSolver;
 
       /** @p materials maps each material id of the mesh to its material. */
       LinearElasticity(
@@ -74,6 +81,72 @@ namespace cycloid
         const std::vector<dealii::types::global_dof_index> &extra)
       {
         extra_relevant = extra;
+      }
+
+      /** Distribute the DoFs (once per mesh) and compute the hanging-node
+       * constraints of every DoF (see hanging_node_constraints()). */
+      void
+      distribute_dofs();
+
+      /**
+       * Constraint sets of one structure (the same constrained DoFs and
+       * entries, different inhomogeneities): the matrix and its sparsity
+       * pattern follow the first set, right-hand side k the inhomogeneities
+       * of set k. Each function adds its constraints to the hanging-node
+       * constraints. Used by the contact solver: one matrix, one
+       * preconditioner and two right-hand sides per active set.
+       */
+      void
+      setup_constraints(
+        const std::vector<
+          std::function<void(dealii::AffineConstraints<double> &)>> &sets);
+
+      /**
+       * Assemble the matrix with constraint set 0 and the right-hand side
+       * of every set (tractions @p tractions, as in assemble(), plus the
+       * inhomogeneities of each set).
+       */
+      void
+      assemble_sets(const std::map<dealii::types::boundary_id,
+                                   const dealii::Function<dim> *> &tractions);
+
+      /**
+       * Solve with the right-hand side of constraint set @p k and
+       * distribute set k's constraints; @p u receives the solution with
+       * ghosts (reinitialised). The preconditioner is built at the first
+       * solve after an assembly and reused. Returns the number of CG
+       * iterations (0 for direct).
+       */
+      unsigned int
+      solve_set(const unsigned int                     k,
+                const Solver                           solver,
+                const double                           relative_tolerance,
+                dealii::TrilinosWrappers::MPI::Vector &u);
+
+      /**
+       * Equilibrium residual of @p u under constraint set @p k: the l2 norm
+       * of C^T f_int(u) (internal forces condensed onto the unconstrained
+       * DoFs, where equilibrium makes them vanish), and the l2 norm of
+       * f_int(u) itself for scale.
+       */
+      std::pair<double, double>
+      residual_norms(const dealii::TrilinosWrappers::MPI::Vector &u,
+                     const unsigned int                           k) const;
+
+      /** Hanging-node constraints of every DoF of the mesh (not only the
+       * locally relevant ones: on a shared triangulation every rank sees
+       * every cell). */
+      const dealii::AffineConstraints<double> &
+      hanging_node_constraints() const
+      {
+        return hanging_all;
+      }
+
+      /** The finite element (dim components of FE_Q). */
+      const dealii::FESystem<dim> &
+      finite_element() const
+      {
+        return fe;
       }
 
       /** Distribute the DoFs and build the sparsity pattern. @p constrain
@@ -144,7 +217,7 @@ namespace cycloid
       const dealii::AffineConstraints<double> &
       constraints() const
       {
-        return all_constraints;
+        return constraint_sets.at(0);
       }
 
       /** The mapping (of the same degree, following the manifolds). */
@@ -181,13 +254,23 @@ namespace cycloid
       std::vector<dealii::types::global_dof_index> extra_relevant;
       dealii::IndexSet                             locally_owned;
       dealii::IndexSet                             locally_relevant;
-      dealii::AffineConstraints<double>            all_constraints;
-      dealii::TrilinosWrappers::SparseMatrix       system_matrix;
-      dealii::TrilinosWrappers::MPI::Vector        system_rhs;
-      dealii::TrilinosWrappers::MPI::Vector        locally_relevant_solution;
+      dealii::AffineConstraints<double>               hanging_all;
+      std::vector<dealii::AffineConstraints<double>>  constraint_sets;
+      dealii::TrilinosWrappers::SparseMatrix          system_matrix;
+      std::vector<dealii::TrilinosWrappers::MPI::Vector> rhs_sets;
+      dealii::TrilinosWrappers::MPI::Vector locally_relevant_solution;
 
       std::unique_ptr<Epetra_MultiVector>       null_space;
       dealii::TrilinosWrappers::PreconditionAMG amg;
+      /** Which preconditioner (if any) matches the current matrix. */
+      enum class Ready
+      {
+        none,
+        amg,
+        direct
+      } ready = Ready::none;
+      std::unique_ptr<dealii::SolverControl>                  direct_control;
+      std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> direct;
     };
   } // namespace elasticity
 } // namespace cycloid

@@ -44,6 +44,10 @@ namespace cycloid
       unsigned int contact_refinements = 0;
       /** Radius around the contact points refined a priori [mm]. */
       double contact_refinement_radius = 0.5;
+      /** Polynomial degree of the FE displacement (1 or 2). */
+      unsigned int degree = 1;
+      /** Adaptive refinement cycles at the active contact nodes. */
+      unsigned int adaptive_cycles = 0;
       /** Write the gmsh mesh (with physical groups) as stage.msh. */
       bool write_msh = false;
 
