@@ -22,6 +22,16 @@ namespace cycloid
                           "Flank vertices closer than this to a pin surface "
                           "are contact candidates [mm] (the approach under "
                           "load is a few micrometres).");
+        prm.declare_entry("Formulation",
+                          "mortar",
+                          Selection("mortar|node-to-surface"),
+                          "Discretisation of the contact constraint: mortar "
+                          "(gap and master displacement weighted with the "
+                          "dual basis of the slave faces: smooth pressures, "
+                          "exact action = reaction) or node-to-surface "
+                          "(collocation at the slave nodes: cheaper set-up, "
+                          "pressures oscillate on non-matching meshes; see "
+                          "doc/contact.md).");
         prm.declare_entry("Residual tolerance",
                           "1e-6",
                           Double(1e-14, 1),
@@ -59,6 +69,7 @@ namespace cycloid
         prm.get_integer("Maximum active set iterations");
       search_distance    = prm.get_double("Search distance");
       residual_tolerance = prm.get_double("Residual tolerance");
+      formulation        = prm.get("Formulation");
       prm.leave_subsection();
       prm.enter_subsection("Solver");
       linear_solver    = prm.get("Linear solver");

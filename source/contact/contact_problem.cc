@@ -9,6 +9,8 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
@@ -20,6 +22,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <tuple>
 
 namespace cycloid
 {
@@ -347,6 +350,11 @@ namespace cycloid
                 }
             }
         }
+      if (settings.formulation == Formulation::mortar)
+        {
+          weight_by_dual_basis();
+          return;
+        }
       if (!deformable_masters)
         return;
       for (auto &s : slaves)
@@ -369,6 +377,153 @@ namespace cycloid
               {
                 s.master_dofs.push_back(dofs[c][a]);
                 s.master_coefficients.push_back(s.normal[c] * w[c][a]);
+              }
+        }
+    }
+
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::weight_by_dual_basis()
+    {
+      const auto &fe      = problem->finite_element();
+      const auto &mapping = problem->mapping();
+      // More points than the slave polynomials need: the master field is
+      // only piecewise smooth along the slave face.
+      const dealii::QGauss<dim - 1> quadrature(fe.degree + 4);
+      dealii::FEFaceValues<dim>     fe_face(mapping,
+                                        fe,
+                                        quadrature,
+                                        dealii::update_values |
+                                          dealii::update_quadrature_points |
+                                          dealii::update_JxW_values);
+      std::map<dealii::types::global_dof_index, unsigned int> index_of;
+      for (unsigned int i = 0; i < slaves.size(); ++i)
+        index_of[slaves[i].dofs[0]] = i;
+      std::vector<double>                 gap(slaves.size(), 0.);
+      std::vector<dealii::Tensor<1, dim>> normals(slaves.size());
+      std::vector<std::map<dealii::types::global_dof_index, double>> coef(
+        slaves.size());
+      std::vector<dealii::types::global_dof_index> indices(fe.n_dofs_per_cell());
+      for (const auto &cell : problem->dof_handler().active_cell_iterators())
+        {
+          if (!slave_bodies.count(cell->material_id()))
+            continue;
+          for (const unsigned int f : cell->face_indices())
+            {
+              if (!cell->face(f)->at_boundary() ||
+                  cell->face(f)->boundary_id() != slave_surface)
+                continue;
+              cell->get_dof_indices(indices);
+              // The face's nodes (x components) and their slave indices.
+              std::vector<unsigned int> local, slave;
+              for (unsigned int k = 0; k < fe.n_dofs_per_face(f); ++k)
+                {
+                  const unsigned int i = fe.face_to_cell_index(k, f);
+                  if (fe.system_to_component_index(i).first != 0)
+                    continue;
+                  local.push_back(i);
+                  const auto it = index_of.find(indices[i]);
+                  slave.push_back(it == index_of.end() ?
+                                    dealii::numbers::invalid_unsigned_int :
+                                    it->second);
+                }
+              if (std::all_of(slave.begin(), slave.end(), [](const unsigned int s) {
+                    return s == dealii::numbers::invalid_unsigned_int;
+                  }))
+                continue;
+              fe_face.reinit(cell, f);
+              // Dual basis psi_a = sum_b A_ab phi_b with A = D M^-1
+              // (biorthogonal: int psi_a phi_b = delta_ab int phi_a).
+              const unsigned int         n = local.size();
+              dealii::FullMatrix<double> M(n, n), Minv(n, n);
+              dealii::Vector<double>     D(n);
+              for (const unsigned int q : fe_face.quadrature_point_indices())
+                for (unsigned int a = 0; a < n; ++a)
+                  {
+                    const double pa = fe_face.shape_value(local[a], q);
+                    D(a) += pa * fe_face.JxW(q);
+                    for (unsigned int b = 0; b < n; ++b)
+                      M(a, b) += pa * fe_face.shape_value(local[b], q) *
+                                 fe_face.JxW(q);
+                  }
+              Minv.invert(M);
+              for (const unsigned int q : fe_face.quadrature_point_indices())
+                {
+                  const dealii::Point<dim> x = fe_face.quadrature_point(q);
+                  // Per cylinder met on this face: gap, normal, master weights.
+                  std::map<unsigned int,
+                           std::tuple<double,
+                                      dealii::Tensor<1, 2>,
+                                      std::array<std::vector<dealii::types::global_dof_index>, dim>,
+                                      std::array<std::vector<double>, dim>>>
+                    at;
+                  for (unsigned int a = 0; a < n; ++a)
+                    {
+                      if (slave[a] == dealii::numbers::invalid_unsigned_int)
+                        continue;
+                      SlaveNode<dim> &s = slaves[slave[a]];
+                      if (s.hanging)
+                        continue;
+                      auto it = at.find(s.cylinder);
+                      if (it == at.end())
+                        {
+                          const MasterCylinder &m = cylinders[s.cylinder];
+                          const double d = planar_distance(x, m.centre);
+                          dealii::Tensor<1, 2> normal;
+                          normal[0] = (x[0] - m.centre[0]) / d;
+                          normal[1] = (x[1] - m.centre[1]) / d;
+                          std::array<std::vector<dealii::types::global_dof_index>, dim> mdofs;
+                          std::array<std::vector<double>, dim> mw;
+                          if (deformable_masters)
+                            {
+                              dealii::Point<dim> P = x;
+                              for (unsigned int c = 0; c < 2; ++c)
+                                P[c] = m.centre[c] + m.radius * normal[c];
+                              AssertThrow(master_weights(s.cylinder, P, mdofs, mw),
+                                          dealii::ExcMessage(
+                                            "contact: no face of master body " +
+                                            std::to_string(m.body) +
+                                            " holds the projection of a slave "
+                                            "quadrature point."));
+                            }
+                          it = at.emplace(s.cylinder,
+                                          std::make_tuple(d - m.radius, normal, mdofs, mw))
+                                 .first;
+                        }
+                      const auto &[g, normal, mdofs, mw] = it->second;
+                      double psi = 0;
+                      for (unsigned int b = 0; b < n; ++b)
+                        psi += D(a) * Minv(a, b) * fe_face.shape_value(local[b], q);
+                      const double w = psi * fe_face.JxW(q);
+                      gap[slave[a]] += w * g;
+                      for (unsigned int c = 0; c < 2; ++c)
+                        normals[slave[a]][c] += w * normal[c];
+                      for (unsigned int c = 0; c < 2; ++c)
+                        for (unsigned int k = 0; k < mdofs[c].size(); ++k)
+                          coef[slave[a]][mdofs[c][k]] += w * normal[c] * mw[c][k];
+                    }
+                }
+            }
+        }
+      for (unsigned int i = 0; i < slaves.size(); ++i)
+        {
+          SlaveNode<dim> &s = slaves[i];
+          if (s.hanging || s.weight <= 0)
+            continue;
+          s.gap0 = gap[i] / s.weight;
+          // The weighted normal (not of unit length on a curved face):
+          // with it the master coefficients of each direction sum to the
+          // slave's, so action equals reaction exactly.
+          s.normal = normals[i] / s.weight;
+          s.master_dofs.clear();
+          s.master_coefficients.clear();
+          for (const auto &[m, value] : coef[i])
+            if (std::abs(value) > 1e-14 * s.weight)
+              {
+                s.master_dofs.push_back(m);
+                s.master_coefficients.push_back(value / s.weight);
               }
         }
     }

@@ -72,6 +72,9 @@ namespace cycloid
       settings.search_distance    = prm.contact.search_distance;
       settings.solver_tolerance   = prm.contact.solver_tolerance;
       settings.residual_tolerance = prm.contact.residual_tolerance;
+      settings.formulation        = prm.contact.formulation == "mortar" ?
+                                      Formulation::mortar :
+                                      Formulation::node_to_surface;
       settings.solver =
         prm.contact.linear_solver == "direct" ?
           elasticity::LinearSolver::direct :

@@ -20,6 +20,8 @@ namespace cycloid
       /** Flank vertices closer than this to a pin surface are contact
        * candidates [mm]. */
       double search_distance = 0.1;
+      /** Constraint discretisation: "mortar" or "node-to-surface". */
+      std::string formulation = "mortar";
       /** Largest accepted relative equilibrium residual [-]. */
       double residual_tolerance = 1e-6;
       /** Linear solver: "cg-amg", "cg-amg-translations" or "direct". */

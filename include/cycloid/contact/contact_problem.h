@@ -54,8 +54,10 @@ namespace cycloid
       std::array<dealii::types::global_dof_index, dim> dofs;
       /** Reference position [mm]. */
       dealii::Point<dim> position;
-      /** Unit normal of the cylinder at the closest point, from the
-       * cylinder into the slave body (no z component). */
+      /** Normal of the cylinder at the closest point, from the cylinder
+       * into the slave body (no z component): unit for node-to-surface,
+       * the dual-basis average int psi_i n / w_i (length 1 - O(h^2)) for
+       * mortar. */
       dealii::Tensor<1, dim> normal;
       /** Initial gap to the exact cylinder [mm]. */
       double gap0 = 0;
@@ -84,9 +86,32 @@ namespace cycloid
       std::array<std::vector<double>, dim>                          weights;
     };
 
+    /**
+     * @brief Discretisation of the contact constraint of a slave node.
+     *
+     * - `node_to_surface`: collocation at the node, n_i . (u_i - u_M(P_i))
+     *   = -g(x_i). Cheap, but on non-matching meshes the master's
+     *   piecewise-polynomial surface makes the nodal pressures oscillate
+     *   (it fails the contact patch test); measured in doc/contact.md.
+     * - `mortar`: the gap weighted with the dual (biorthogonal) basis
+     *   psi_i of the slave face, int psi_i [n . (u_s - u_M) + g] ds = 0,
+     *   whose slave part is diagonal (w_i n_i . u_i, w_i = int phi_i), so
+     *   the constraint keeps the same one-node form with the master
+     *   coefficients int psi_i n phi_m ds / w_i and the weighted initial
+     *   gap int psi_i g ds / w_i (Wohlmuth's dual mortar with the
+     *   integrals by quadrature on the slave faces).
+     */
+    enum class Formulation
+    {
+      node_to_surface,
+      mortar
+    };
+
     /** @brief Settings of the active-set iteration and the linear solver. */
     struct ContactSettings
     {
+      /** Discretisation of the constraint. */
+      Formulation formulation = Formulation::mortar;
       /** Iteration limit of the active set per load state. */
       unsigned int max_iterations = 100;
       /** Nodes closer than this to a master surface are candidates [mm]. */
@@ -289,6 +314,10 @@ namespace cycloid
       find_slave_nodes();
       void
       find_tied_nodes();
+      /** Mortar: replace each slave node's gap and master coefficients by
+       * their dual-basis weighted averages over the slave faces. */
+      void
+      weight_by_dual_basis();
       /** The cells of the cylinders' surfaces: (cell, face) per cylinder. */
       void
       collect_master_faces();
