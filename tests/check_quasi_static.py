@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Checks of a `Run = quasi-static` run on 1 and 2 MPI ranks.
 
-Usage: check_quasi_static.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE [STIFFER_DIR]
+Usage: check_quasi_static.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
+           [--stiffer DIR] [--close DIR TOL]
 
 * torque balance: the reaction torque at the crank holes equals the target,
   and the sum of pin force x arm equals it (to round-off: 1e-8);
@@ -9,9 +10,13 @@ Usage: check_quasi_static.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE [STIFFER
 * monotonicity with torque: engaged pins and K_secant do not decrease;
 * at the highest torque the FE model engages the same pins as the
   analytical model of the same scene (run here with Run = analytic);
-* with STIFFER_DIR (the same scene with rigid pins): that run is stiffer
-  (smaller rotation, larger K_secant and K_tangent) at every torque.
+* with --stiffer DIR (the same scene with rigid pins): that run is stiffer
+  (smaller rotation, larger K_secant and K_tangent) at every torque;
+* with --close DIR TOL (the same scene on another mesh or element degree):
+  K_secant_elastic and K_tangent agree with that run's to TOL (relative)
+  at every torque, and the same pins are engaged.
 """
+import argparse
 import csv
 import os
 import subprocess
@@ -31,7 +36,7 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
-def main(prm, dir1, dir2, exe, stiffer=None):
+def main(prm, dir1, dir2, exe, stiffer=None, close=None):
     s1, s2 = rows(f"{dir1}/stiffness.csv"), rows(f"{dir2}/stiffness.csv")
     p2 = rows(f"{dir2}/pin_forces.csv")
     check(len(s1) == len(s2) and len(s1) > 1, "state counts")
@@ -73,6 +78,16 @@ def main(prm, dir1, dir2, exe, stiffer=None):
             check(float(a["rotation_rad"]) < float(b["rotation_rad"]), "rigid pins do not turn less")
             check(float(a["K_tangent_Nm_per_rad"]) > float(b["K_tangent_Nm_per_rad"]), "rigid pins not stiffer (tangent)")
             check(float(a["K_secant_elastic_Nm_per_rad"]) > float(b["K_secant_elastic_Nm_per_rad"]), "rigid pins not stiffer (secant)")
+    if close:
+        other, tol = close[0], float(close[1])
+        po = rows(f"{other}/pin_forces.csv")
+        for a, b in zip(rows(f"{other}/stiffness.csv"), s2):
+            for key in ("K_secant_elastic_Nm_per_rad", "K_tangent_Nm_per_rad"):
+                x, y = float(a[key]), float(b[key])
+                print(f"T {b['torque_Nm']} N m: {key} {y:.5e} (dofs {b['dofs']}) vs {x:.5e} (dofs {a['dofs']}): {y / x - 1:+.2e}")
+                check(abs(y - x) <= tol * abs(x), f"{key} {y} not within {tol} of {x}")
+            engaged = lambda rs, st: sorted((r["disc"], r["pin"]) for r in rs if r["step"] == st and float(r["Fn_N"]) > 0)
+            check(engaged(po, a["step"]) == engaged(p2, b["step"]), f"engaged pins differ from {other} at T {b['torque_Nm']}")
     if failures:
         print(f"{len(failures)} check(s) failed:")
         for f in failures:
@@ -83,4 +98,12 @@ def main(prm, dir1, dir2, exe, stiffer=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main(*sys.argv[1:6]))
+    parser = argparse.ArgumentParser()
+    parser.add_argument("prm")
+    parser.add_argument("dir1")
+    parser.add_argument("dir2")
+    parser.add_argument("exe")
+    parser.add_argument("--stiffer")
+    parser.add_argument("--close", nargs=2, metavar=("DIR", "TOL"))
+    a = parser.parse_args()
+    sys.exit(main(a.prm, a.dir1, a.dir2, a.exe, a.stiffer, a.close))

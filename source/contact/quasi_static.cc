@@ -11,6 +11,7 @@
 
 #include <cycloid/analytic/pair_stiffness.h>
 #include <cycloid/analytic/stage_model.h>
+#include <cycloid/contact/pin_model.h>
 #include <cycloid/contact/quasi_static.h>
 #include <cycloid/mesh/stage_mesh.h>
 
@@ -49,23 +50,14 @@ namespace cycloid
              false,
              dealii::parallel::shared::Triangulation<dim>::partition_metis)
     {
-      AssertThrow(
-        !(prm.scene.pins == Scene::PinModel::rigid &&
-          prm.scene.pin_support == Scene::PinSupport::housing),
-        dealii::ExcMessage(
-          "Scene: rigid pins need no housing (Pins = rigid holds every pin "
-          "DoF); use Pin support = axis, or Pins = elastic with the "
-          "housing."));
+      pin_model = create_pin_model<dim>(prm);
       make_grid();
 
       std::map<dealii::types::material_id, parameters::ElasticMaterial>
         materials;
       for (unsigned int d = 0; d < prm.scene.n_discs; ++d)
         materials[ids::disc(d)] = prm.material.disc;
-      for (unsigned int j = 0; j < prm.geometry.n_pins; ++j)
-        materials[ids::pin(j)] = prm.material.pin;
-      if (prm.scene.pin_support == Scene::PinSupport::housing)
-        materials[ids::housing] = prm.material.housing;
+      pin_model->add_materials(materials);
 
       ContactSettings settings;
       settings.max_iterations     = prm.contact.max_active_set_iterations;
@@ -95,12 +87,8 @@ namespace cycloid
                    prm.geometry.pin_radius,
                    ids::pin(j),
                    ids::pin_surface};
-      contact->set_contact(discs,
-                           ids::flank,
-                           pins,
-                           prm.scene.pins == Scene::PinModel::elastic);
-      if (prm.scene.pin_support == Scene::PinSupport::housing)
-        contact->set_ties(ids::housing, ids::housing_seat);
+      contact->set_contact(discs, ids::flank, pins, pin_model->deformable());
+      pin_model->configure(*contact);
       setup_system();
     }
 
@@ -149,8 +137,6 @@ namespace cycloid
                                 Scene::LoadIntroduction::bore ?
                               ids::bore :
                               ids::crank_hole;
-      const bool  rigid   = prm.scene.pins == Scene::PinModel::rigid;
-      const double core   = prm.scene.pin_core_radius * (1. + 1e-9);
       // Positions of a cell's nodes (support points on the exact mapping).
       const dealii::Quadrature<dim> nodes(
         fe.base_element(0).get_unit_support_points());
@@ -165,50 +151,17 @@ namespace cycloid
         {
           const auto m = cell->material_id();
           cell->get_dof_indices(indices);
-          if (ids::is_pin(m))
-            {
-              if (rigid)
-                {
-                  fixed.insert(fixed.end(), indices.begin(), indices.end());
-                  continue;
-                }
-              if (prm.scene.pin_support != Scene::PinSupport::axis)
-                continue;
-              const auto c = geo.pin_centre(m - ids::pin(0));
-              bool       near = false;
-              for (const unsigned int v : cell->vertex_indices())
-                near |= std::hypot(cell->vertex(v)[0] - c[0],
-                                   cell->vertex(v)[1] - c[1]) < core;
-              if (!near)
-                continue;
-              fe_values.reinit(cell);
-              for (unsigned int i = 0; i < indices.size(); ++i)
-                {
-                  const auto &x =
-                    fe_values.quadrature_point(fe.system_to_component_index(i).second);
-                  if (std::hypot(x[0] - c[0], x[1] - c[1]) < core)
-                    fixed.push_back(indices[i]);
-                }
-              continue;
-            }
-          // Housing: the outer surface is held; disc: the load surface
-          // turns by beta about the disc's centre.
-          const bool housing = m == ids::housing;
-          const auto surface = housing ? ids::housing_outer : load_id;
+          pin_model->held_dofs(cell, indices, fe_values, fixed);
+          if (m >= prm.scene.n_discs)
+            continue;
+          // The disc's load surface turns by beta about the disc's centre.
+          const dealii::Point<2> centre = geo.disc_centre(m, psi);
           for (const unsigned int f : cell->face_indices())
             {
               if (!cell->face(f)->at_boundary() ||
-                  cell->face(f)->boundary_id() != surface)
+                  cell->face(f)->boundary_id() != load_id)
                 continue;
-              if (housing)
-                {
-                  for (unsigned int i = 0; i < indices.size(); ++i)
-                    if (fe.has_support_on_face(i, f))
-                      fixed.push_back(indices[i]);
-                  continue;
-                }
               fe_values.reinit(cell);
-              const dealii::Point<2> centre = geo.disc_centre(m, psi);
               for (unsigned int i = 0; i < indices.size(); ++i)
                 if (fe.has_support_on_face(i, f))
                   {
@@ -226,7 +179,7 @@ namespace cycloid
       unsigned int hanging = 0;
       for (const auto &s : contact->slave_nodes())
         hanging += s.hanging;
-      pcout << "  contact: " << el.n_dofs() << " DoFs (Q" << fe.degree
+      pcout << "  contact: pins " << pin_model->name() << ", " << el.n_dofs() << " DoFs (Q" << fe.degree
             << "), " << contact->slave_nodes().size() << " candidate nodes ("
             << hanging << " hanging)"
             << (contact->tied_nodes().empty() ?
@@ -272,7 +225,7 @@ namespace cycloid
           const auto   c = cell->center();
           const double r = cell->diameter();
           for (const auto &p : points)
-            if (p.distance(c) < r)
+            if (p.distance(c) < 2 * r)
               {
                 cell->set_refine_flag();
                 ++flagged;

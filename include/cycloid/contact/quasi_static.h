@@ -7,6 +7,7 @@
 #include <deal.II/distributed/shared_tria.h>
 
 #include <cycloid/contact/contact_problem.h>
+#include <cycloid/contact/pin_model.h>
 #include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/parameters/all_parameters.h>
 #include <cycloid/postprocess/result_writer.h>
@@ -101,6 +102,7 @@ namespace cycloid
       dealii::ConditionalOStream                 pcout;
       mutable dealii::TimerOutput                timer;
       dealii::parallel::shared::Triangulation<dim> tria;
+      std::unique_ptr<PinModel<dim>>             pin_model;
       std::unique_ptr<ContactProblem<dim>>       contact;
       bool                                       warm = false;
       std::vector<std::pair<double, std::string>> written;

@@ -1,0 +1,376 @@
+#!/usr/bin/python3
+"""Speed of the FE contact stiffness (issue #4 item 8): accuracy of K against
+the whole program's wall time, for a sequence of meshes.
+
+Parts (all on --ranks MPI ranks, default 2, Run = quasi-static, crank angle 0):
+  seed  2D one disc, elastic pins held at their cores (Pin support = axis),
+        unmodified profile (zero clearance), T = 1000 N m;
+  mod   the same with the modified profile (Delta rp = -0.01 mm,
+        Delta rrp = +0.01 mm: clearances 17-20 um), torque list 300, 1000 N m
+        in one run (warm-started states);
+  3d    3D two discs, elastic pins seated in the housing (Pin support =
+        housing), unmodified profile, T = 1000 N m;
+  3d1   3D one disc (Pin support = axis) against 2D one disc on the same
+        in-plane mesh settings: how much the third dimension changes K.
+
+Every run is the whole command `mpirun -np R cycloid-contact case.prm`, timed
+from outside (mesh generation, set-up, solve and VTU output included). The
+stiffness, DoFs, engaged pins and active-set iterations come from the run's
+stiffness.csv; the program's own timer table gives the mesh and solve times.
+The error of K is relative to the finest mesh of the same part (and, where
+three nested contact refinements allow it, to a Richardson extrapolation).
+
+Writes <out>/contact-speed-2d.csv, <out>/contact-speed-3d.csv and
+<out>/contact-speed.png (out = doc/ by default) and prints a summary.
+
+Usage:
+  /usr/bin/python3 benchmarks/contact_speed/run.py [--exe PATH] [--quick]
+      [--parts seed,mod,3d,3d1] [--timeout 1200] [--keep DIR]
+"""
+import argparse
+import csv
+import math
+import os
+import re
+import resource
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+# Mesh settings of the coarse 3D scene (also the "in-plane" mesh of the
+# 3D-against-2D comparison).
+COARSE3D = {"Contact element size": 1, "Flank element size": 1.5, "Pin element size": 1.5,
+            "Coarse element size": 10, "Axial layers per disc": 1, "Contact refinements": 0}
+
+# (part, case label, Mesh settings). Contact refinement radius 0.3 mm always.
+SEED = [(f"cr{n}", {"Contact refinements": n}) for n in range(0, 6)] + [
+    ("cr1+ad1", {"Contact refinements": 1, "Adaptive refinement cycles": 1}),
+    ("cr1+ad2", {"Contact refinements": 1, "Adaptive refinement cycles": 2}),
+    ("cr1+ad3", {"Contact refinements": 1, "Adaptive refinement cycles": 3}),
+    ("cr2+ad1", {"Contact refinements": 2, "Adaptive refinement cycles": 1}),
+    ("Q2 cr0", {"Contact refinements": 0, "Polynomial degree": 2}),
+    ("Q2 cr1", {"Contact refinements": 1, "Polynomial degree": 2}),
+    ("Q2 cr2", {"Contact refinements": 2, "Polynomial degree": 2}),
+]
+SEED_QUICK = ["cr0", "cr1", "cr2", "cr3", "cr1+ad1", "Q2 cr0"]
+MOD = [(f"cr{n}", {"Contact refinements": n}) for n in range(0, 5)] + [
+    ("cr1+ad2", {"Contact refinements": 1, "Adaptive refinement cycles": 2}),
+    ("Q2 cr1", {"Contact refinements": 1, "Polynomial degree": 2}),
+]
+MOD_QUICK = ["cr0", "cr1", "cr2"]
+
+
+def c3(**kw):
+    d = dict(COARSE3D)
+    d.update({k.replace("_", " ").capitalize(): v for k, v in kw.items()})
+    return d
+
+
+THREE_D = [
+    ("c1 ax1 cr0", c3()),
+    ("c1 ax1 cr1", c3(contact_refinements=1)),
+    ("c1 ax1 cr2", c3(contact_refinements=2)),
+    ("c1 ax2 cr1", c3(axial_layers_per_disc=2, contact_refinements=1)),
+    ("c0.5 ax1 cr1", c3(contact_element_size=0.5, contact_refinements=1)),
+    ("c0.5 ax2 cr2", c3(contact_element_size=0.5, axial_layers_per_disc=2, contact_refinements=2)),
+]
+THREE_D_QUICK = ["c1 ax1 cr0", "c1 ax1 cr1"]
+# 3D one disc (Pin support = axis) and 2D one disc on the same in-plane mesh.
+ONE_DISC = [
+    ("2D c1 cr1", 2, c3(contact_refinements=1)),
+    ("3D c1 ax1 cr1", 3, c3(contact_refinements=1)),
+    ("3D c1 ax2 cr1", 3, c3(axial_layers_per_disc=2, contact_refinements=1)),
+    ("2D c1 cr2", 2, c3(contact_refinements=2)),
+    ("3D c1 ax1 cr2", 3, c3(contact_refinements=2)),
+]
+ONE_DISC_QUICK = ["2D c1 cr1", "3D c1 ax1 cr1"]
+
+
+def prm_text(out, dim, discs, support, torque, mesh, modified):
+    lines = ["set Run = quasi-static", f"set Output directory = {out}"]
+    if modified:
+        lines += ["subsection Geometry", "  set Pin circle radius modification = -0.01",
+                  "  set Pin radius modification = 0.01", "end"]
+    lines += ["subsection Scene", f"  set Dimension = {dim}", f"  set Number of discs = {discs}",
+              "  set Pins = elastic", f"  set Pin support = {support}", "end",
+              "subsection Loading", f"  set Torque = {torque}", "  set Crank angle = 0", "end",
+              "subsection Mesh", "  set Contact refinement radius = 0.3"]
+    lines += [f"  set {k} = {v}" for k, v in mesh.items()]
+    lines += ["end"]
+    return "\n".join(lines) + "\n"
+
+
+def timer_section(log, name):
+    m = re.search(r"\|\s*" + re.escape(name) + r"\s*\|\s*\d+\s*\|\s*([0-9.e+-]+)s", log)
+    return float(m.group(1)) if m else float("nan")
+
+
+def run_case(args, work, part, label, dim, discs, support, torque, mesh, modified):
+    """One mpirun of the program; returns a list of rows (one per load state)."""
+    tag = re.sub(r"[^A-Za-z0-9.]+", "_", f"{part}_{label}")
+    out = os.path.join(work, tag)
+    prm = out + ".prm"
+    with open(prm, "w") as f:
+        f.write(prm_text(out, dim, discs, support, torque, mesh, modified))
+    cmd = ["mpirun", "-np", str(args.ranks), args.exe, prm]
+    if os.geteuid() == 0:
+        cmd.insert(1, "--allow-run-as-root")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    load = os.getloadavg()[0]
+    t0 = time.monotonic()
+    with open(out + ".log", "w") as logf:
+        p = subprocess.Popen(cmd, stdout=logf, stderr=subprocess.STDOUT, start_new_session=True)
+        try:
+            rc = p.wait(timeout=args.timeout)
+            status = "ok" if rc == 0 else f"exit {rc}"
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGTERM)  # the process group of this mpirun only
+            try:
+                p.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+            status = f"timeout {args.timeout:.0f} s"
+    wall = time.monotonic() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    with open(out + ".log") as f:
+        log = f.read()
+    cells = re.search(r"mesh: .*?(\d+) cells", log)
+    base = {"part": part, "case": label, "dim": dim, "discs": discs,
+            "contact_element_mm": mesh.get("Contact element size", 0.25),
+            "axial_layers": mesh.get("Axial layers per disc", "") if dim == 3 else "",
+            "contact_refinements": mesh.get("Contact refinements", 0),
+            "adaptive_cycles": mesh.get("Adaptive refinement cycles", 0),
+            "degree": mesh.get("Polynomial degree", 1),
+            "cells": int(cells.group(1)) if cells else "",
+            "grid_s": timer_section(log, "make grid"), "solve_s": timer_section(log, "solve (active set)"),
+            "output_s": timer_section(log, "output results"),
+            "total_wall_s": wall, "cpu_s": cpu, "load_avg_at_start": load, "status": status,
+            "prm": prm, "log": out + ".log"}
+    rows = []
+    path = os.path.join(out, "stiffness.csv")
+    if status == "ok" and os.path.exists(path):
+        with open(path) as f:
+            for r in csv.DictReader(f):
+                row = dict(base)
+                row.update({"torque_Nm": float(r["torque_Nm"]), "state": int(r["step"]),
+                            "dofs": int(r["dofs"]),
+                            "K_secant_Nm_per_rad": float(r["K_secant_Nm_per_rad"]),
+                            "K_tangent_Nm_per_rad": float(r["K_tangent_Nm_per_rad"]),
+                            "K_secant_elastic_Nm_per_rad": float(r["K_secant_elastic_Nm_per_rad"]),
+                            "max_pin_force_N": float(r["max_pin_force_N"]),
+                            "pins_in_contact": int(r["pins_in_contact"]),
+                            "active_set_iterations": int(r["active_set_iterations"]),
+                            "state_wall_s": float(r["wall_s"])})
+                rows.append(row)
+    if not rows:
+        row = dict(base)
+        row.update({"torque_Nm": torque, "state": "", "dofs": ""})
+        rows.append(row)
+        tail = "\n    ".join(log.strip().splitlines()[-8:])
+        print(f"  !! {part} {label}: {status}; prm {prm}\n    {tail}", flush=True)
+    for r in rows:
+        if "K_secant_Nm_per_rad" in r:
+            print(f"  {part:5s} {label:14s} T {r['torque_Nm']:6.0f}: dofs {r['dofs']:7d}  "
+                  f"K_sec {r['K_secant_Nm_per_rad']:.5e}  K_tan {r['K_tangent_Nm_per_rad']:.5e}  "
+                  f"pins {r['pins_in_contact']:2d}  it {r['active_set_iterations']:2d}  "
+                  f"Fmax {r['max_pin_force_N']:7.1f} N  wall {wall:7.1f} s (grid {base['grid_s']:.1f}, "
+                  f"solve {base['solve_s']:.1f})  cpu {cpu:7.1f} s  load {load:.1f}", flush=True)
+    return rows
+
+
+def richardson(fine, mid, coarse):
+    """Extrapolated value and observed order from three nested refinements
+    (h halves between them); None if the differences do not shrink monotonically."""
+    d1, d2 = mid - coarse, fine - mid
+    if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
+        return None, None
+    p = math.log(abs(d1) / abs(d2)) / math.log(2.)
+    return fine + d2 / (2. ** p - 1.), p
+
+
+def add_errors(rows, ref_case, key_fn):
+    """err_* relative to the case ref_case of the same group (key_fn(row))."""
+    refs = {key_fn(r): r for r in rows if r["case"] == ref_case and "K_secant_Nm_per_rad" in r}
+    for r in rows:
+        ref = refs.get(key_fn(r))
+        r["reference_case"] = ref_case if ref else ""
+        for k, e in (("K_secant_Nm_per_rad", "err_K_secant_pct"), ("K_tangent_Nm_per_rad", "err_K_tangent_pct")):
+            r[e] = 100. * (r[k] - ref[k]) / ref[k] if ref and k in r else ""
+
+
+def cheapest_within(rows, pct, key="total_wall_s"):
+    ok = [r for r in rows if r.get("err_K_secant_pct", "") != "" and abs(r["err_K_secant_pct"]) <= pct
+          and abs(r["err_K_tangent_pct"]) <= pct and r["case"] != r["reference_case"]]
+    return min(ok, key=lambda r: r[key]) if ok else None
+
+
+COLUMNS = ["part", "case", "dim", "discs", "contact_element_mm", "axial_layers", "contact_refinements",
+           "adaptive_cycles", "degree", "torque_Nm", "state", "cells", "dofs", "K_secant_Nm_per_rad",
+           "K_tangent_Nm_per_rad", "K_secant_elastic_Nm_per_rad", "max_pin_force_N", "pins_in_contact",
+           "active_set_iterations", "state_wall_s", "grid_s", "solve_s", "output_s", "total_wall_s", "cpu_s",
+           "load_avg_at_start", "reference_case", "err_K_secant_pct", "err_K_tangent_pct", "status"]
+
+
+def fmt(v):
+    if isinstance(v, float):
+        return "nan" if math.isnan(v) else f"{v:.6g}"
+    return v
+
+
+def write_csv(path, rows):
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(COLUMNS)
+        for r in rows:
+            w.writerow([fmt(r.get(c, "")) for c in COLUMNS])
+    print("written", path)
+
+
+def plot(path, groups):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    markers = "osD^v<>ph*"
+    for (name, rows), colour in zip(groups, ["C0", "C1", "C2", "C3"]):
+        pts = [r for r in rows if r.get("err_K_secant_pct", "") != "" and r["case"] != r["reference_case"]]
+        for i, r in enumerate(pts):
+            err = max(abs(r["err_K_secant_pct"]), abs(r["err_K_tangent_pct"]), 1e-3)
+            ax.loglog(r["total_wall_s"], err, markers[i % len(markers)], color=colour, ms=6,
+                      label=f"{name}: {r['case']}")
+    ax.axhline(1.0, color="k", lw=0.8, ls="--")
+    ax.axvline(60, color="C0", lw=0.6, ls=":")
+    ax.axvline(900, color="C2", lw=0.6, ls=":")
+    ax.set_xlabel("wall time of the whole run on 2 ranks (mesh + solve + output) [s]")
+    ax.set_ylabel("max(|err K_secant|, |err K_tangent|) vs finest [%]")
+    ax.set_title("FE contact stiffness: error against cost", fontsize=10)
+    ax.grid(True, which="both", lw=0.3)
+    ax.legend(fontsize=5.5, ncol=2, loc="best")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    print("written", path)
+
+
+def summary_richardson(rows, labels, what):
+    by = {r["case"]: r for r in rows if "K_secant_Nm_per_rad" in r}
+    if not all(l in by for l in labels):
+        return
+    for k in ("K_secant_Nm_per_rad", "K_tangent_Nm_per_rad"):
+        c, m, f = (by[l][k] for l in labels)
+        ext, p = richardson(f, m, c)
+        if ext is None:
+            print(f"  Richardson {what} {k} from {labels}: not monotone ({c:.5e}, {m:.5e}, {f:.5e})")
+        else:
+            print(f"  Richardson {what} {k} from {labels}: {ext:.5e} (order {p:.2f}); "
+                  f"finest is {100 * (f - ext) / ext:+.2f} % from it")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "cycloid-contact"))
+    ap.add_argument("--ranks", type=int, default=2)
+    ap.add_argument("--quick", action="store_true", help="a small subset of every part (a few minutes)")
+    ap.add_argument("--parts", default="seed,mod,3d,3d1", help="comma list of seed, mod, 3d, 3d1")
+    ap.add_argument("--timeout", type=float, default=1200., help="stop a run after this many seconds")
+    ap.add_argument("--out", default=os.path.join(ROOT, "doc"), help="directory of the CSV and PNG files")
+    ap.add_argument("--keep", default=None, help="keep prm, logs and outputs in this directory")
+    args = ap.parse_args()
+    args.exe = os.path.abspath(args.exe)
+    parts = args.parts.split(",")
+    pick = (lambda cases, quick: [c for c in cases if c[0] in quick]) if args.quick else (lambda cases, quick: cases)
+
+    if args.keep:
+        os.makedirs(args.keep, exist_ok=True)
+        work, tmp = os.path.abspath(args.keep), None
+    else:
+        tmp = tempfile.TemporaryDirectory()
+        work = tmp.name
+    print(f"executable {args.exe}, {args.ranks} ranks, work dir {work}", flush=True)
+
+    rows2d, rows3d = [], []
+    if "seed" in parts:
+        print("2D one disc, seed geometry (zero clearance), T = 1000 N m", flush=True)
+        seed = []
+        for label, mesh in pick(SEED, SEED_QUICK):
+            seed += run_case(args, work, "seed", label, 2, 1, "axis", "1000", mesh, False)
+        ref = max((r for r in seed if re.fullmatch(r"cr\d", r["case"]) and "K_secant_Nm_per_rad" in r),
+                  key=lambda r: r["contact_refinements"], default=None)
+        if ref:
+            add_errors(seed, ref["case"], lambda r: r["torque_Nm"])
+            n = ref["contact_refinements"]
+            summary_richardson(seed, [f"cr{n - 2}", f"cr{n - 1}", f"cr{n}"], "seed")
+        rows2d += seed
+    if "mod" in parts:
+        print("2D one disc, modified profile (clearances 17-20 um), T = 300, 1000 N m in one run", flush=True)
+        mod = []
+        for label, mesh in pick(MOD, MOD_QUICK):
+            mod += run_case(args, work, "mod", label, 2, 1, "axis", "300, 1000", mesh, True)
+        ref = max((r for r in mod if re.fullmatch(r"cr\d", r["case"]) and "K_secant_Nm_per_rad" in r),
+                  key=lambda r: r["contact_refinements"], default=None)
+        if ref:
+            add_errors(mod, ref["case"], lambda r: r["torque_Nm"])
+            n = ref["contact_refinements"]
+            for t in (300., 1000.):
+                summary_richardson([r for r in mod if r["torque_Nm"] == t],
+                                   [f"cr{n - 2}", f"cr{n - 1}", f"cr{n}"], f"mod T={t:.0f}")
+        rows2d += mod
+    if "3d" in parts:
+        print("3D two discs, pins in the housing, seed geometry, T = 1000 N m", flush=True)
+        three = []
+        for label, mesh in pick(THREE_D, THREE_D_QUICK):
+            three += run_case(args, work, "3d", label, 3, 2, "housing", "1000", mesh, False)
+        done = [r for r in three if "K_secant_Nm_per_rad" in r]
+        if done:
+            add_errors(three, max(done, key=lambda r: r["dofs"])["case"], lambda r: 0)
+        rows3d += three
+    if "3d1" in parts:
+        print("One disc, pins held at their cores: 3D against 2D on the same in-plane mesh, T = 1000 N m", flush=True)
+        one = []
+        for label, dim, mesh in pick(ONE_DISC, ONE_DISC_QUICK):
+            one += run_case(args, work, "3d1", label, dim, 1, "axis", "1000", mesh, False)
+        rows3d += one
+        by = {r["case"]: r for r in one if "K_secant_Nm_per_rad" in r}
+        for l3 in by:
+            if l3.startswith("3D"):
+                l2 = "2D c1 " + l3.split()[-1]
+                if l2 in by:
+                    print(f"  {l3} / {l2}: K_secant {by[l3]['K_secant_Nm_per_rad'] / by[l2]['K_secant_Nm_per_rad']:.4f},"
+                          f" K_tangent {by[l3]['K_tangent_Nm_per_rad'] / by[l2]['K_tangent_Nm_per_rad']:.4f}")
+
+    os.makedirs(args.out, exist_ok=True)
+    if rows2d:
+        write_csv(os.path.join(args.out, "contact-speed-2d.csv"), rows2d)
+    if rows3d:
+        write_csv(os.path.join(args.out, "contact-speed-3d.csv"), rows3d)
+
+    print("summary (error relative to the finest run of the part; wall = whole mpirun)")
+    groups = []
+    for name, rows in (("2D seed", [r for r in rows2d if r["part"] == "seed"]),
+                       ("2D mod 1000", [r for r in rows2d if r["part"] == "mod" and r["torque_Nm"] == 1000.]),
+                       ("2D mod 300", [r for r in rows2d if r["part"] == "mod" and r["torque_Nm"] == 300.]),
+                       ("3D two discs", [r for r in rows3d if r["part"] == "3d"])):
+        if not rows:
+            continue
+        groups.append((name, rows))
+        best = cheapest_within(rows, 1.0)
+        if best:
+            print(f"  {name}: cheapest within 1 % of {best['reference_case']}: {best['case']} "
+                  f"({best['dofs']} DoFs, {best['total_wall_s']:.1f} s wall incl. meshing, "
+                  f"err K_sec {best['err_K_secant_pct']:+.2f} %, K_tan {best['err_K_tangent_pct']:+.2f} %)")
+        else:
+            print(f"  {name}: no cheaper mesh within 1 % of the finest")
+    if groups:
+        plot(os.path.join(args.out, "contact-speed.png"), groups)
+    if tmp:
+        tmp.cleanup()
+
+
+if __name__ == "__main__":
+    main()
