@@ -55,12 +55,20 @@ SEED = [(f"cr{n}", {"Contact refinements": n}) for n in range(0, 6)] + [
     ("Q2 cr0", {"Contact refinements": 0, "Polynomial degree": 2}),
     ("Q2 cr1", {"Contact refinements": 1, "Polynomial degree": 2}),
     ("Q2 cr2", {"Contact refinements": 2, "Polynomial degree": 2}),
+    ("Q2 cr3", {"Contact refinements": 3, "Polynomial degree": 2}),
+    # One global refinement more: the bulk (away from the contacts) error of Q1.
+    ("g1 cr3", {"Global refinements": 1, "Contact refinements": 3}),
 ]
 SEED_QUICK = ["cr0", "cr1", "cr2", "cr3", "cr1+ad1", "Q2 cr0"]
 MOD = [(f"cr{n}", {"Contact refinements": n}) for n in range(0, 5)] + [
-    ("cr1+ad2", {"Contact refinements": 1, "Adaptive refinement cycles": 2}),
+    ("cr2+ad1", {"Contact refinements": 2, "Adaptive refinement cycles": 1}),
     ("Q2 cr1", {"Contact refinements": 1, "Polynomial degree": 2}),
+    ("Q2 cr2", {"Contact refinements": 2, "Polynomial degree": 2}),
 ]
+# Second reference of a 2D part: Q2 at the finest contact refinement run, which
+# also has the bulk (away from the contacts) discretisation error of the Q1
+# sequence removed (that error does not shrink with Contact refinements).
+BEST = {"seed": "Q2 cr3", "mod": "Q2 cr2"}
 MOD_QUICK = ["cr0", "cr1", "cr2"]
 
 
@@ -194,19 +202,20 @@ def richardson(fine, mid, coarse):
     return fine + d2 / (2. ** p - 1.), p
 
 
-def add_errors(rows, ref_case, key_fn):
-    """err_* relative to the case ref_case of the same group (key_fn(row))."""
-    refs = {key_fn(r): r for r in rows if r["case"] == ref_case and "K_secant_Nm_per_rad" in r}
+def add_errors(rows, ref_case, key_fn, prefix=""):
+    """{prefix}err_* relative to the case ref_case of the same group (key_fn(row))."""
+    refs = {key_fn(r): r for r in rows if r["case"] == ref_case and has_k(r)}
     for r in rows:
         ref = refs.get(key_fn(r))
-        r["reference_case"] = ref_case if ref else ""
+        r[prefix + "reference_case"] = ref_case if ref else ""
         for k, e in (("K_secant_Nm_per_rad", "err_K_secant_pct"), ("K_tangent_Nm_per_rad", "err_K_tangent_pct")):
-            r[e] = 100. * (r[k] - ref[k]) / ref[k] if ref and k in r else ""
+            r[prefix + e] = 100. * (r[k] - ref[k]) / ref[k] if ref and has_k(r) else ""
 
 
-def cheapest_within(rows, pct, key="total_wall_s"):
-    ok = [r for r in rows if r.get("err_K_secant_pct", "") != "" and abs(r["err_K_secant_pct"]) <= pct
-          and abs(r["err_K_tangent_pct"]) <= pct and r["case"] != r["reference_case"]]
+def cheapest_within(rows, pct, key="total_wall_s", prefix=""):
+    ok = [r for r in rows if r.get(prefix + "err_K_secant_pct", "") != ""
+          and abs(r[prefix + "err_K_secant_pct"]) <= pct and abs(r[prefix + "err_K_tangent_pct"]) <= pct
+          and r["case"] != r[prefix + "reference_case"]]
     return min(ok, key=lambda r: r[key]) if ok else None
 
 
@@ -214,7 +223,8 @@ COLUMNS = ["part", "case", "dim", "discs", "contact_element_mm", "axial_layers",
            "adaptive_cycles", "degree", "torque_Nm", "state", "cells", "dofs", "K_secant_Nm_per_rad",
            "K_tangent_Nm_per_rad", "K_secant_elastic_Nm_per_rad", "max_pin_force_N", "pins_in_contact",
            "active_set_iterations", "state_wall_s", "grid_s", "solve_s", "output_s", "total_wall_s", "cpu_s",
-           "load_avg_at_start", "reference_case", "err_K_secant_pct", "err_K_tangent_pct", "status"]
+           "load_avg_at_start", "reference_case", "err_K_secant_pct", "err_K_tangent_pct",
+           "best_reference_case", "best_err_K_secant_pct", "best_err_K_tangent_pct", "status"]
 
 
 def fmt(v):
@@ -258,17 +268,79 @@ def plot(path, groups):
 
 
 def summary_richardson(rows, labels, what):
-    by = {r["case"]: r for r in rows if "K_secant_Nm_per_rad" in r}
+    by = {r["case"]: r for r in rows if has_k(r)}
+    notes = []
     if not all(l in by for l in labels):
-        return
+        return notes
     for k in ("K_secant_Nm_per_rad", "K_tangent_Nm_per_rad"):
         c, m, f = (by[l][k] for l in labels)
         ext, p = richardson(f, m, c)
         if ext is None:
-            print(f"  Richardson {what} {k} from {labels}: not monotone ({c:.5e}, {m:.5e}, {f:.5e})")
+            notes.append(f"Richardson {what} {k} from {labels}: not monotone ({c:.5e}, {m:.5e}, {f:.5e})")
         else:
-            print(f"  Richardson {what} {k} from {labels}: {ext:.5e} (order {p:.2f}); "
-                  f"finest is {100 * (f - ext) / ext:+.2f} % from it")
+            notes.append(f"Richardson {what} {k} from {labels}: {ext:.5e} (order {p:.2f}); "
+                         f"finest is {100 * (f - ext) / ext:+.2f} % from it")
+    return notes
+
+
+def parse(v):
+    for t in (int, float):
+        try:
+            return t(v)
+        except ValueError:
+            pass
+    return v
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return [{k: parse(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def has_k(r):
+    return r.get("K_secant_Nm_per_rad", "") != ""
+
+
+def finest_cr(rows):
+    """The finest a-priori contact refinement (Q1, no global or adaptive refinement) of a part."""
+    done = [r for r in rows if re.fullmatch(r"cr\d", r["case"]) and has_k(r)]
+    return max(done, key=lambda r: r["contact_refinements"])["case"] if done else None
+
+
+def analyse(rows2d, rows3d):
+    """Errors against the finest run of every part, Richardson estimates, the 3D/2D ratios."""
+    notes = []
+    for part in ("seed", "mod"):
+        rows = [r for r in rows2d if r["part"] == part]
+        ref = finest_cr(rows)
+        if not ref:
+            continue
+        add_errors(rows, ref, lambda r: r["torque_Nm"])
+        add_errors(rows, BEST[part], lambda r: r["torque_Nm"], "best_")
+        n = int(ref[2:])
+        for t in sorted({r["torque_Nm"] for r in rows}):
+            notes += summary_richardson([r for r in rows if r["torque_Nm"] == t],
+                                        [f"cr{n - 2}", f"cr{n - 1}", f"cr{n}"], f"{part} T={t:.0f}")
+    three = [r for r in rows3d if r["part"] == "3d" and has_k(r)]
+    if three:
+        add_errors([r for r in rows3d if r["part"] == "3d"], max(three, key=lambda r: r["dofs"])["case"],
+                   lambda r: 0)
+    by = {r["case"]: r for r in rows3d if r["part"] == "3d1" and has_k(r)}
+    for l3 in by:
+        l2 = "2D c1 " + l3.split()[-1]
+        if l3.startswith("3D") and l2 in by:
+            notes.append(f"{l3} / {l2}: K_secant {by[l3]['K_secant_Nm_per_rad'] / by[l2]['K_secant_Nm_per_rad']:.4f}, "
+                         f"K_tangent {by[l3]['K_tangent_Nm_per_rad'] / by[l2]['K_tangent_Nm_per_rad']:.4f}")
+    return notes
+
+
+def merge(old, new, order):
+    """Rows of old whose (part, case) was not run again, plus new, in the order of the case lists."""
+    fresh = {(r["part"], r["case"]) for r in new}
+    rows = [r for r in old if (r["part"], r["case"]) not in fresh] + new
+    return sorted(rows, key=lambda r: (order.get((r["part"], r["case"]), 999), r["torque_Nm"]))
 
 
 def main():
@@ -278,13 +350,19 @@ def main():
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--quick", action="store_true", help="a small subset of every part (a few minutes)")
     ap.add_argument("--parts", default="seed,mod,3d,3d1", help="comma list of seed, mod, 3d, 3d1")
+    ap.add_argument("--cases", default=None, help="comma list of case labels to run (default: all of the parts)")
+    ap.add_argument("--fresh", action="store_true",
+                    help="start new CSV files instead of replacing the re-run cases in the existing ones")
     ap.add_argument("--timeout", type=float, default=1200., help="stop a run after this many seconds")
     ap.add_argument("--out", default=os.path.join(ROOT, "doc"), help="directory of the CSV and PNG files")
     ap.add_argument("--keep", default=None, help="keep prm, logs and outputs in this directory")
     args = ap.parse_args()
     args.exe = os.path.abspath(args.exe)
     parts = args.parts.split(",")
-    pick = (lambda cases, quick: [c for c in cases if c[0] in quick]) if args.quick else (lambda cases, quick: cases)
+    cases = set(args.cases.split(",")) if args.cases else None
+
+    def pick(all_cases, quick):
+        return [c for c in all_cases if (not args.quick or c[0] in quick) and (cases is None or c[0] in cases)]
 
     if args.keep:
         os.makedirs(args.keep, exist_ok=True)
@@ -294,78 +372,59 @@ def main():
         work = tmp.name
     print(f"executable {args.exe}, {args.ranks} ranks, work dir {work}", flush=True)
 
-    rows2d, rows3d = [], []
+    new2d, new3d = [], []
     if "seed" in parts:
         print("2D one disc, seed geometry (zero clearance), T = 1000 N m", flush=True)
-        seed = []
         for label, mesh in pick(SEED, SEED_QUICK):
-            seed += run_case(args, work, "seed", label, 2, 1, "axis", "1000", mesh, False)
-        ref = max((r for r in seed if re.fullmatch(r"cr\d", r["case"]) and "K_secant_Nm_per_rad" in r),
-                  key=lambda r: r["contact_refinements"], default=None)
-        if ref:
-            add_errors(seed, ref["case"], lambda r: r["torque_Nm"])
-            n = ref["contact_refinements"]
-            summary_richardson(seed, [f"cr{n - 2}", f"cr{n - 1}", f"cr{n}"], "seed")
-        rows2d += seed
+            new2d += run_case(args, work, "seed", label, 2, 1, "axis", "1000", mesh, False)
     if "mod" in parts:
         print("2D one disc, modified profile (clearances 17-20 um), T = 300, 1000 N m in one run", flush=True)
-        mod = []
         for label, mesh in pick(MOD, MOD_QUICK):
-            mod += run_case(args, work, "mod", label, 2, 1, "axis", "300, 1000", mesh, True)
-        ref = max((r for r in mod if re.fullmatch(r"cr\d", r["case"]) and "K_secant_Nm_per_rad" in r),
-                  key=lambda r: r["contact_refinements"], default=None)
-        if ref:
-            add_errors(mod, ref["case"], lambda r: r["torque_Nm"])
-            n = ref["contact_refinements"]
-            for t in (300., 1000.):
-                summary_richardson([r for r in mod if r["torque_Nm"] == t],
-                                   [f"cr{n - 2}", f"cr{n - 1}", f"cr{n}"], f"mod T={t:.0f}")
-        rows2d += mod
+            new2d += run_case(args, work, "mod", label, 2, 1, "axis", "300, 1000", mesh, True)
     if "3d" in parts:
         print("3D two discs, pins in the housing, seed geometry, T = 1000 N m", flush=True)
-        three = []
         for label, mesh in pick(THREE_D, THREE_D_QUICK):
-            three += run_case(args, work, "3d", label, 3, 2, "housing", "1000", mesh, False)
-        done = [r for r in three if "K_secant_Nm_per_rad" in r]
-        if done:
-            add_errors(three, max(done, key=lambda r: r["dofs"])["case"], lambda r: 0)
-        rows3d += three
+            new3d += run_case(args, work, "3d", label, 3, 2, "housing", "1000", mesh, False)
     if "3d1" in parts:
         print("One disc, pins held at their cores: 3D against 2D on the same in-plane mesh, T = 1000 N m", flush=True)
-        one = []
-        for label, dim, mesh in pick(ONE_DISC, ONE_DISC_QUICK):
-            one += run_case(args, work, "3d1", label, dim, 1, "axis", "1000", mesh, False)
-        rows3d += one
-        by = {r["case"]: r for r in one if "K_secant_Nm_per_rad" in r}
-        for l3 in by:
-            if l3.startswith("3D"):
-                l2 = "2D c1 " + l3.split()[-1]
-                if l2 in by:
-                    print(f"  {l3} / {l2}: K_secant {by[l3]['K_secant_Nm_per_rad'] / by[l2]['K_secant_Nm_per_rad']:.4f},"
-                          f" K_tangent {by[l3]['K_tangent_Nm_per_rad'] / by[l2]['K_tangent_Nm_per_rad']:.4f}")
+        for label, dim, mesh in pick([(l, d, m) for l, d, m in ONE_DISC], ONE_DISC_QUICK):
+            new3d += run_case(args, work, "3d1", label, dim, 1, "axis", "1000", mesh, False)
 
     os.makedirs(args.out, exist_ok=True)
-    if rows2d:
-        write_csv(os.path.join(args.out, "contact-speed-2d.csv"), rows2d)
-    if rows3d:
-        write_csv(os.path.join(args.out, "contact-speed-3d.csv"), rows3d)
+    path2d = os.path.join(args.out, "contact-speed-2d.csv")
+    path3d = os.path.join(args.out, "contact-speed-3d.csv")
+    order = {}
+    for part, lst in (("seed", SEED), ("mod", MOD), ("3d", THREE_D), ("3d1", ONE_DISC)):
+        for i, c in enumerate(lst):
+            order[(part, c[0])] = i
+    rows2d = merge([] if args.fresh else read_csv(path2d), new2d, order)
+    rows3d = merge([] if args.fresh else read_csv(path3d), new3d, order)
+    notes = analyse(rows2d, rows3d)
+    if new2d or (rows2d and args.fresh):
+        write_csv(path2d, rows2d)
+    if new3d or (rows3d and args.fresh):
+        write_csv(path3d, rows3d)
 
     print("summary (error relative to the finest run of the part; wall = whole mpirun)")
+    for n in notes:
+        print("  " + n)
     groups = []
     for name, rows in (("2D seed", [r for r in rows2d if r["part"] == "seed"]),
-                       ("2D mod 1000", [r for r in rows2d if r["part"] == "mod" and r["torque_Nm"] == 1000.]),
-                       ("2D mod 300", [r for r in rows2d if r["part"] == "mod" and r["torque_Nm"] == 300.]),
+                       ("2D mod 1000", [r for r in rows2d if r["part"] == "mod" and r["torque_Nm"] == 1000]),
+                       ("2D mod 300", [r for r in rows2d if r["part"] == "mod" and r["torque_Nm"] == 300]),
                        ("3D two discs", [r for r in rows3d if r["part"] == "3d"])):
         if not rows:
             continue
         groups.append((name, rows))
-        best = cheapest_within(rows, 1.0)
-        if best:
-            print(f"  {name}: cheapest within 1 % of {best['reference_case']}: {best['case']} "
-                  f"({best['dofs']} DoFs, {best['total_wall_s']:.1f} s wall incl. meshing, "
-                  f"err K_sec {best['err_K_secant_pct']:+.2f} %, K_tan {best['err_K_tangent_pct']:+.2f} %)")
-        else:
-            print(f"  {name}: no cheaper mesh within 1 % of the finest")
+        for prefix in ("", "best_"):
+            best = cheapest_within(rows, 1.0, prefix=prefix)
+            if best:
+                print(f"  {name}: cheapest within 1 % of {best[prefix + 'reference_case']}: {best['case']} "
+                      f"({best['dofs']} DoFs, {best['total_wall_s']:.1f} s wall incl. meshing, "
+                      f"err K_sec {best[prefix + 'err_K_secant_pct']:+.2f} %, "
+                      f"K_tan {best[prefix + 'err_K_tangent_pct']:+.2f} %)")
+            elif prefix == "" or any(r.get("best_reference_case") for r in rows):
+                print(f"  {name}: no cheaper mesh within 1 % of the {prefix or 'finest '}reference")
     if groups:
         plot(os.path.join(args.out, "contact-speed.png"), groups)
     if tmp:

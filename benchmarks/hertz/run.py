@@ -10,11 +10,12 @@ strain, against Hertz's closed form. Runs `hertz-study` for
   * concave, F = 100 N/mm                 the same three
 
 with GLOBAL = 3 global refinements and contact refinements 0, 1, 2, ...
-until the next level would take longer than --max-seconds (its time is
-predicted as --growth x the last level's). Each level is its own serial
-process; the nodal contact pressures (printed by the library when
-CYCLOID_DEBUG is set) are kept too. Then one 2-rank run per --mpi-check
-case is compared with the serial run of the same level.
+up to the finest level that took < ~60 s on the 2-core development machine
+(table FINEST; with --max-seconds S instead: until the next level would take
+longer than S, its time predicted as --growth x the last level's). Each
+level is its own serial process; the nodal contact pressures (printed by
+the library when CYCLOID_DEBUG is set) are kept too. Then one 2-rank run
+per MPI_CHECKS entry is compared with the serial run of the same level.
 
 Writes doc/hertz/hertz.csv (one row per run), doc/hertz/profiles.csv
 (nodal pressures), doc/hertz/mpi_check.csv, doc/hertz/hertz_convergence.png,
@@ -43,6 +44,11 @@ MORTAR, NTS = "mortar", "node-to-surface"
 LINES = [(seat, force, form, deg)
          for seat, force in [("convex", 200), ("convex", 3200), ("concave", 100)]
          for form, deg in [(MORTAR, 1), (MORTAR, 2), (NTS, 1)]]
+# Finest contact level per line: the last one under ~60 s (2 shared cores;
+# the next level takes 4-6 x longer).
+FINEST = {("convex", 200, MORTAR, 1): 8, ("convex", 200, MORTAR, 2): 6, ("convex", 200, NTS, 1): 8,
+          ("convex", 3200, MORTAR, 1): 6, ("convex", 3200, MORTAR, 2): 4, ("convex", 3200, NTS, 1): 6,
+          ("concave", 100, MORTAR, 1): 6, ("concave", 100, MORTAR, 2): 5, ("concave", 100, NTS, 1): 6}
 # 2-rank checks: (seat, force, formulation, degree, contact level)
 MPI_CHECKS = [("convex", 3200, MORTAR, 1, 5), ("convex", 3200, MORTAR, 2, 3),
               ("convex", 3200, NTS, 1, 4), ("concave", 100, MORTAR, 1, 5)]
@@ -88,7 +94,8 @@ def run_level(exe, seat, force, form, deg, glob, level, ranks=1):
     if p.returncode != 0:
         sys.exit(f"failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr[-2000:]}")
     lines = p.stdout.strip().splitlines()
-    row = typed(next(csv.DictReader(lines)))
+    raw = next(csv.DictReader(lines))
+    row = typed(raw)
     profile = []
     for line in p.stderr.splitlines():
         try:
@@ -97,27 +104,26 @@ def run_level(exe, seat, force, form, deg, glob, level, ranks=1):
             continue
         if len(vals) == 4:
             profile.append(vals)  # arc s, pressure lambda/weight, lambda, weight
-    return row, sorted(profile)
+    return row, raw, sorted(profile)
 
 
 def run_all(args):
-    rows, profiles = [], []
+    rows, raws, profiles = [], [], []
     for seat, force, form, deg in LINES:
-        level, last = 0, None
-        while level <= args.max_level:
-            row, prof = run_level(args.exe, seat, force, form, deg, args.glob, level)
+        finest = FINEST[(seat, force, form, deg)] if args.max_seconds is None else args.max_level
+        for level in range(finest + 1):
+            row, raw, prof = run_level(args.exe, seat, force, form, deg, args.glob, level)
             rows.append(row)
+            raws.append(raw)
             for s, p, lam, w in prof:
                 profiles.append([seat, force, form, deg, level, s, p, lam, w])
             print(f"{label((seat, force, form, deg))} level {level}: h {row['h_contact_mm']:.4g} mm, "
                   f"active {row['n_active']}, a err {row['a_error']:+.4%}, p0 err {row['p0_error']:+.4%}, "
                   f"balance {row['force_balance_error']:.1e}, dofs {row['dofs']}, {row['wall_s']:.1f} s",
                   flush=True)
-            last = row["wall_s"]
-            if last * args.growth > args.max_seconds:
+            if args.max_seconds is not None and row["wall_s"] * args.growth > args.max_seconds:
                 break
-            level += 1
-    return rows, profiles
+    return rows, raws, profiles
 
 
 def mpi_checks(args, rows):
@@ -127,8 +133,8 @@ def mpi_checks(args, rows):
         k = (seat, force, form, deg)
         r1 = serial.get((k, level))
         if r1 is None:
-            r1, _ = run_level(args.exe, seat, force, form, deg, args.glob, level)
-        r2, _ = run_level(args.exe, seat, force, form, deg, args.glob, level, ranks=2)
+            r1, _, _ = run_level(args.exe, seat, force, form, deg, args.glob, level)
+        r2, _, _ = run_level(args.exe, seat, force, form, deg, args.glob, level, ranks=2)
         for ranks, r in [(1, r1), (2, r2)]:
             out.append({"seat": seat, "force_N_per_mm": force, "formulation": form, "degree": deg,
                         "contact": level, "ranks": ranks, "dofs": r["dofs"], "n_active": r["n_active"],
@@ -156,17 +162,24 @@ def usable(rows):
 
 
 def fit_range(pts):
-    """Pre-asymptotic range of one line: from the first level with at least
-    3 active nodes up to the level before the first one whose |error| no
-    longer falls by at least 20 % (the model-error plateau or the sign change
-    of the error). Returns the points (h, |e|) used, at least 2, else []."""
-    pts = [(h, abs(e)) for h, e, n in pts if n >= 3]
-    used = pts[:1]
-    for h, e in pts[1:]:
-        if e > 0.8 * used[-1][1]:
-            break
-        used.append((h, e))
-    return used if len(used) >= 2 else []
+    """Pre-asymptotic range of one line (points (h, e) with >= 3 active nodes,
+    coarse to fine): the levels from the coarsest on whose |error| is still
+    above twice the finest level's |error| (the plateau: model error plus
+    what the finest mesh leaves); at least the first two. Returns the points
+    (h, |e|) used ([] if fewer than 3 levels)."""
+    if len(pts) < 3:
+        return []
+    n = 0
+    while n < len(pts) - 1 and abs(pts[n][1]) > 2 * abs(pts[-1][1]):
+        n += 1
+    return [(h, abs(e)) for h, e in pts[:max(n, 2)]]
+
+
+def self_range(pts):
+    """Self-convergence: |e_h - e_finest| for all but the finest level."""
+    if len(pts) < 3:
+        return []
+    return [(h, abs(e - pts[-1][1])) for h, e in pts[:-1]]
 
 
 def order(used):
@@ -176,7 +189,7 @@ def order(used):
 
 
 def oscillation(prof, a):
-    """Largest |p_i - (p_{i-1} + p_{i+1})/2| over the nodes with |s_i| <= 0.8 a
+    """Largest |p_i - (p_{i-1} + p_{i+1})/2| over the nodes with |s_i| <= 0.5 a
     (relative to the largest nodal pressure): the node-to-node jump of the
     nodal pressures. A smooth Hertz ellipse gives about (h/a)^2/2 here."""
     prof = sorted(prof)
@@ -184,7 +197,7 @@ def oscillation(prof, a):
     p = np.array([p[1] for p in prof])
     if len(p) < 5:
         return math.nan
-    jumps = [abs(p[i] - 0.5 * (p[i - 1] + p[i + 1])) for i in range(1, len(p) - 1) if abs(s[i]) <= 0.8 * a]
+    jumps = [abs(p[i] - 0.5 * (p[i - 1] + p[i + 1])) for i in range(1, len(p) - 1) if abs(s[i]) <= 0.5 * a]
     return max(jumps) / p.max() if jumps else math.nan
 
 
@@ -212,15 +225,18 @@ def analyse(rows, profiles, checks):
             ls, mk = styles[k[2:]]
             lab = label(k)
             if k[2] == MORTAR:
-                used = fit_range([(r["h_contact_mm"], r[col], r["n_active"]) for r in rs])
+                pts = [(r["h_contact_mm"], r[col]) for r in rs if r["n_active"] >= 3]
+                used, selfc = fit_range(pts), self_range(pts)
                 if used:
-                    p = order(used)
-                    fits[(k, col)] = (p, used)
-                    lab += f" (order {p:.2f}, {len(used)} pts)"
+                    p, q = order(used), order(selfc)
+                    fits[(k, col)] = (p, used, q, selfc)
+                    lab += f": order {p:.1f} ({len(used)} pts), self {q:.1f}"
             ax.loglog(h, np.maximum(np.abs(e), 1e-6), ls=ls, marker=mk, color=colours[k[:2]], label=lab,
                       mfc="none" if k[2] == NTS else None)
     for ax, name in zip(axes, ["half-width a", "peak pressure p0"]):
         ax.axhline(0.01, color="grey", lw=0.8, ls="-.")
+        href = np.array([0.02, 0.32])
+        ax.loglog(href, 0.05 * (href / href[-1]) ** 2, color="k", lw=1.2, label="slope 2 (reference)")
         ax.set_xlabel("contact node spacing h [mm]")
         ax.set_ylabel(f"|relative error of {name}| vs Hertz")
         ax.set_title(f"{name} (GLOBAL = 3)")
@@ -270,11 +286,12 @@ def analyse(rows, profiles, checks):
         print(f"{label(k):30s} {fin['contact']:3d} {fin['h_contact_mm']:8.4f} "
               f"{fin['a_exact_mm'] / fin['h_contact_mm']:5.1f} {fin['dofs']:7d} {fin['a_error']:+9.3%} "
               f"{fin['p0_error']:+9.3%} {osc:6.2%} {fin['wall_s']:7.1f}")
-    print("\n== fitted orders (mortar, pre-asymptotic range) ==")
-    for (k, col), (p, used) in sorted(fits.items()):
+    print("\n== fitted orders (mortar): |error vs Hertz| over the pre-asymptotic range;"
+          " self = |value - finest value| over all coarser levels ==")
+    for (k, col), (p, used, q, selfc) in sorted(fits.items()):
         print(f"{label(k):30s} {col:9s} order {p:5.2f} over h = {used[0][0]:.3g} ... {used[-1][0]:.3g} mm"
-              f" ({len(used)} points)")
-    print("\n== node-to-node pressure oscillation (max |p_i - mean of neighbours| / max p, |s| <= 0.8 a) ==")
+              f" ({len(used)} points); self {q:5.2f} over h = {selfc[0][0]:.3g} ... {selfc[-1][0]:.3g} mm")
+    print("\n== node-to-node pressure oscillation (max |p_i - mean of neighbours| / max p, |s| <= 0.5 a) ==")
     for k in LINES:
         if k not in lines:
             continue
@@ -290,8 +307,12 @@ def analyse(rows, profiles, checks):
             c1, c2 = checks[i], checks[i + 1]
             da = abs(float(c1["a_error"]) - float(c2["a_error"])) / (1 + float(c1["a_error"]))
             dp = abs(float(c1["p0_error"]) - float(c2["p0_error"])) / (1 + float(c1["p0_error"]))
+            # resolution of the printed (6 significant digits) relative errors
+            res = max(10 ** (math.floor(math.log10(abs(float(c[e])))) - 5)
+                      for c in (c1, c2) for e in ("a_error", "p0_error"))
             k = (c1["seat"], int(float(c1["force_N_per_mm"])), c1["formulation"], int(c1["degree"]))
-            print(f"{label(k):30s} level {c1['contact']}: a rel. diff {da:.1e}, p0 rel. diff {dp:.1e}, "
+            print(f"{label(k):30s} level {c1['contact']}: a rel. diff {da:.1e}, p0 rel. diff {dp:.1e} "
+                  f"(printed resolution {res:.0e}), "
                   f"iterations {c1['iterations']}/{c2['iterations']}, active {c1['n_active']}/{c2['n_active']}")
     print(f"\nforce balance: max |error| {max(abs(r['force_balance_error']) for r in rows):.1e}"
           + (f"; {len(bad)} rows above {BALANCE_TOL:g}" if bad else ""))
@@ -302,10 +323,12 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "hertz-study"), help="hertz-study binary")
     ap.add_argument("--global", dest="glob", type=int, default=3, help="global refinements (3)")
-    ap.add_argument("--max-seconds", type=float, default=60, help="wall-time budget of the finest level (60)")
+    ap.add_argument("--max-seconds", type=float, default=None,
+                    help="adaptive: stop when the next level is predicted to take longer than this "
+                         "(default: the levels of table FINEST)")
     ap.add_argument("--growth", type=float, default=5,
                     help="predicted time ratio of the next contact level to the last one (5)")
-    ap.add_argument("--max-level", type=int, default=9, help="hard cap on the contact level (9)")
+    ap.add_argument("--max-level", type=int, default=9, help="hard cap on the contact level with --max-seconds (9)")
     ap.add_argument("--no-mpi", action="store_true", help="skip the 2-rank checks")
     ap.add_argument("--out", default=OUT, help="output directory (doc/hertz)")
     ap.add_argument("--plot-only", action="store_true", help="re-analyse doc/hertz/*.csv without running")
@@ -314,9 +337,9 @@ def main():
     os.makedirs(OUT, exist_ok=True)
     p_rows, p_prof, p_mpi = (os.path.join(OUT, n) for n in ["hertz.csv", "profiles.csv", "mpi_check.csv"])
     if not args.plot_only:
-        rows, profiles = run_all(args)
-        header = list(rows[0].keys())
-        write_csv(p_rows, header, [[r[c] for c in header] for r in rows])
+        rows, raws, profiles = run_all(args)
+        header = list(raws[0].keys())
+        write_csv(p_rows, header, [[r[c] for c in header] for r in raws])
         write_csv(p_prof, ["seat", "force_N_per_mm", "formulation", "degree", "contact", "s_mm", "p_MPa",
                            "lambda_N_per_mm", "weight_mm"], profiles)
         if not args.no_mpi:
@@ -325,7 +348,7 @@ def main():
         print("written", p_rows, p_prof, p_mpi if not args.no_mpi else "")
     rows = [typed(r) for r in read_csv(p_rows)]
     profiles = read_csv(p_prof)
-    checks = read_csv(p_mpi) if os.path.exists(p_mpi) else []
+    checks = read_csv(p_mpi) if os.path.exists(p_mpi) and (args.plot_only or not args.no_mpi) else []
     analyse(rows, profiles, checks)
 
 

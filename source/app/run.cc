@@ -7,7 +7,6 @@
 
 #include <cycloid/analytic/stage_model.h>
 #include <cycloid/app/run.h>
-#include <cycloid/contact/quasi_static.h>
 #include <cycloid/postprocess/result_writer.h>
 
 #include <algorithm>
@@ -32,6 +31,9 @@ namespace cycloid
           case Mode::quasi_static:
             run_quasi_static(prm, comm);
             return;
+          case Mode::phase_sweep:
+            run_phase_sweep(prm, comm);
+            return;
           case Mode::mesh:
             if (prm.scene.dimension == 2)
               run_mesh<2>(prm, comm);
@@ -43,76 +45,9 @@ namespace cycloid
                         dealii::ExcMessage(
                           "Run = " + prm.run.mode_name +
                           " is not available in this version: Run = "
-                          "analytic, mesh and quasi-static are implemented so far (the rest is tracked in "
+                          "analytic, mesh, quasi-static and phase-sweep are implemented so far (the rest is tracked in "
                           "the project's issues)."));
         }
-    }
-
-
-
-    namespace
-    {
-      template <int dim>
-      void
-      quasi_static(const parameters::AllParameters &prm, const MPI_Comm comm)
-      {
-        const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-        const double psi =
-          prm.loading.crank_angle_deg * dealii::numbers::PI / 180.;
-        if (root)
-          std::cout << "cycloid-contact: quasi-static FE contact, " << dim
-                    << "D, " << prm.scene.n_discs << " disc(s), "
-                    << (prm.scene.pins ==
-                            parameters::SceneParameters::PinModel::rigid ?
-                          "rigid" :
-                          "elastic")
-                    << " pins, crank angle " << prm.loading.crank_angle_deg
-                    << " deg, " << prm.loading.torques.size() << " torque(s)"
-                    << std::endl;
-        // The scene is checked while it is built: no result files for a
-        // scene that cannot be solved.
-        contact::QuasiStatic<dim> solver(prm, psi, comm);
-        postprocess::ResultWriter writer(prm.run.output_directory, root);
-        unsigned int              step = 0;
-        for (const double torque : prm.loading.torques)
-          {
-            postprocess::StiffnessRow             row;
-            std::vector<postprocess::PinForceRow> pins;
-            solver.solve(torque, row, pins);
-            row.step      = step;
-            row.crank_deg = prm.loading.crank_angle_deg;
-            for (auto &p : pins)
-              {
-                p.step      = step;
-                p.crank_deg = row.crank_deg;
-              }
-            writer.write(row, pins);
-            solver.output_results(step);
-            if (root)
-              std::cout << "  state " << step + 1 << "/"
-                        << prm.loading.torques.size() << ": T " << torque
-                        << " N m, beta " << row.rotation_rad
-                        << " rad, K_secant " << row.k_secant << ", K_tangent "
-                        << row.k_tangent << " N m/rad ("
-                        << row.k_tangent * postprocess::rad_per_arcmin
-                        << " N m/arcmin), pins " << row.pins_in_contact
-                        << ", active-set iterations " << row.iterations
-                        << ", dofs " << row.dofs << ", " << row.wall_s << " s"
-                        << std::endl;
-            ++step;
-          }
-      }
-    } // namespace
-
-
-
-    void
-    run_quasi_static(const parameters::AllParameters &prm, const MPI_Comm comm)
-    {
-      if (prm.scene.dimension == 2)
-        quasi_static<2>(prm, comm);
-      else
-        quasi_static<3>(prm, comm);
     }
 
 

@@ -401,7 +401,6 @@ namespace cycloid
       std::map<dealii::types::global_dof_index, unsigned int> index_of;
       for (unsigned int i = 0; i < slaves.size(); ++i)
         index_of[slaves[i].dofs[0]] = i;
-      std::vector<double>                 gap(slaves.size(), 0.);
       std::vector<dealii::Tensor<1, dim>> normals(slaves.size());
       std::vector<std::map<dealii::types::global_dof_index, double>> coef(
         slaves.size());
@@ -493,11 +492,11 @@ namespace cycloid
                                  .first;
                         }
                       const auto &[g, normal, mdofs, mw] = it->second;
+                      (void)g;
                       double psi = 0;
                       for (unsigned int b = 0; b < n; ++b)
                         psi += D(a) * Minv(a, b) * fe_face.shape_value(local[b], q);
                       const double w = psi * fe_face.JxW(q);
-                      gap[slave[a]] += w * g;
                       for (unsigned int c = 0; c < 2; ++c)
                         normals[slave[a]][c] += w * normal[c];
                       for (unsigned int c = 0; c < 2; ++c)
@@ -512,7 +511,10 @@ namespace cycloid
           SlaveNode<dim> &s = slaves[i];
           if (s.hanging || s.weight <= 0)
             continue;
-          s.gap0 = gap[i] / s.weight;
+          // The initial gap stays collocated at the node (see
+          // Formulation): the dual-weighted gap would carry a bias of
+          // -kappa h^2 / 6 (kappa: curvature of the gap function), which on
+          // coarse faces reaches the size of micrometre clearances.
           // The weighted normal (not of unit length on a curved face):
           // with it the master coefficients of each direction sum to the
           // slave's, so action equals reaction exactly.

@@ -95,15 +95,6 @@ namespace cycloid
 
 
     template <int dim>
-    QuasiStatic<dim>::~QuasiStatic()
-    {
-      if (prm.run.mode == parameters::RunParameters::Mode::quasi_static)
-        timer.print_summary();
-    }
-
-
-
-    template <int dim>
     double
     QuasiStatic<dim>::width_scale() const
     {
@@ -409,16 +400,18 @@ namespace cycloid
 
     template <int dim>
     void
-    QuasiStatic<dim>::output_results(const unsigned int step)
+    QuasiStatic<dim>::output_results(
+      const unsigned int                           step,
+      std::vector<std::pair<double, std::string>> &records)
     {
       dealii::TimerOutput::Scope t(timer, "output results");
       const std::string name = "solution-" + dealii::Utilities::int_to_string(step, 4);
       contact->write_vtu(prm.run.output_directory, name);
       if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
         {
-          written.emplace_back(step, name + ".pvtu");
+          records.emplace_back(step, name + ".pvtu");
           std::ofstream pvd(prm.run.output_directory + "/solution.pvd");
-          dealii::DataOutBase::write_pvd_record(pvd, written);
+          dealii::DataOutBase::write_pvd_record(pvd, records);
         }
     }
 

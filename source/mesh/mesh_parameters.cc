@@ -80,6 +80,17 @@ namespace cycloid
                           "the cells (of every body) next to the active "
                           "contact nodes and solve again, this many times "
                           "[-]. Adds to the a-priori Contact refinements.");
+        prm.declare_entry("Periodic meshes",
+                          "true",
+                          Bool(),
+                          "Mesh crank angle psi as psi mod 360/zp turned by "
+                          "whole pin pitches (pins relabelled), so that "
+                          "states one mesh period apart have identical "
+                          "meshes and the FE stiffness is periodic to "
+                          "round-off. Only applies without crank holes "
+                          "(Geometry/Number of crank holes = 0): crank holes "
+                          "break the discs' tooth symmetry and with them the "
+                          "exact periodicity of the stage.");
         prm.declare_entry("Write msh",
                           "false",
                           Bool(),
@@ -109,6 +120,7 @@ namespace cycloid
         contact_refinement_radius = prm.get_double("Contact refinement radius");
         write_msh                 = prm.get_bool("Write msh");
         degree                    = prm.get_integer("Polynomial degree");
+        periodic                  = prm.get_bool("Periodic meshes");
         adaptive_cycles = prm.get_integer("Adaptive refinement cycles");
       }
       prm.leave_subsection();

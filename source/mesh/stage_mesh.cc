@@ -785,15 +785,46 @@ namespace cycloid
       const geometry::CycloidGeometry geo(prm.geometry);
       const auto                     &g = prm.geometry;
 
+      // Periodic meshes: the stage at psi + 2 pi/zp is the stage at psi
+      // turned by one pin pitch (the discs by one extra tooth pitch), when
+      // no crank holes break the discs' symmetry. Mesh psi' = psi mod
+      // 2 pi/zp and turn the mesh by k pitches, relabelling the pins, so
+      // that states a whole number of periods apart have identical meshes.
+      double       psi_mesh = psi;
+      unsigned int k_pitch  = 0;
+      if (prm.mesh.periodic && g.n_crank_holes == 0)
+        {
+          const double period = geo.mesh_period();
+          const double k      = std::floor(psi / period + 1e-9);
+          psi_mesh            = psi - k * period;
+          k_pitch = static_cast<unsigned int>(
+            ((static_cast<long>(k) % static_cast<long>(g.n_pins)) + g.n_pins) %
+            g.n_pins);
+        }
       RawMesh raw;
       if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
         raw = generate_with_gmsh(prm,
                                  geo,
-                                 psi,
+                                 psi_mesh,
                                  prm.mesh.write_msh ?
                                    prm.run.output_directory + "/stage.msh" :
                                    "");
       broadcast(raw, comm);
+      if (k_pitch > 0)
+        {
+          const double angle = k_pitch * 2. * dealii::numbers::PI / g.n_pins;
+          const double c = std::cos(angle), s = std::sin(angle);
+          for (std::size_t v = 0; v < raw.coordinates.size() / 3; ++v)
+            {
+              const double x = raw.coordinates[3 * v],
+                           y = raw.coordinates[3 * v + 1];
+              raw.coordinates[3 * v]     = c * x - s * y;
+              raw.coordinates[3 * v + 1] = s * x + c * y;
+            }
+          for (auto &m : raw.materials)
+            if (ids::is_pin(m))
+              m = ids::pin((m - ids::pin(0) + k_pitch) % g.n_pins);
+        }
 
       // gmsh -> deal.II vertex order (lexicographic); a hexahedron is a
       // gmsh quadrilateral at two z levels.

@@ -225,6 +225,12 @@ namespace cycloid
                         "output",
                         Anything(),
                         "Directory for the results (created if missing).");
+      prm.declare_entry("Write solution",
+                        "true",
+                        Bool(),
+                        "FE runs: write solution-NNNN.pvtu (+ solution.pvd) "
+                        "for every solved state (3D fields take tens of MB a "
+                        "state; the CSV files are always written).");
     }
 
 
@@ -234,6 +240,7 @@ namespace cycloid
     {
       mode_name        = prm.get("Run");
       output_directory = prm.get("Output directory");
+      write_solution   = prm.get_bool("Write solution");
       AssertThrow(!output_directory.empty(),
                   dealii::ExcMessage("Output directory must not be empty."));
       if (mode_name == "analytic")

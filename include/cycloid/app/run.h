@@ -23,12 +23,26 @@ namespace cycloid
                  const MPI_Comm                   comm);
 
     /**
-     * `Run = quasi-static` (work in progress): FE contact of the 2D one-disc
-     * scene with rigid pins at `Crank angle`, for each `Torque`.
+     * `Run = quasi-static`: FE contact of the scene (2D one disc, 3D one
+     * or two discs) at `Crank angle`, for each `Torque` in turn (each
+     * warm-started from the previous); writes stiffness.csv,
+     * pin_forces.csv and the VTU fields.
      */
     void
     run_quasi_static(const parameters::AllParameters &parameters,
                      const MPI_Comm                   comm);
+
+    /**
+     * `Run = phase-sweep`: the quasi-static FE contact at `Number of
+     * phases` crank angles over one mesh period 360/zp degrees (both ends
+     * included), each torque warm-started from the previous phase's active
+     * set at that torque; the CSV rows are flushed per state, progress and
+     * the remaining time are printed, and fluctuation.csv gets the
+     * stiffness fluctuation (max - min)/mean per torque.
+     */
+    void
+    run_phase_sweep(const parameters::AllParameters &parameters,
+                    const MPI_Comm                   comm);
 
     /**
      * `Run = mesh`: generate the scene's mesh (Scene/Dimension), write it

@@ -57,9 +57,6 @@ namespace cycloid
                   const double                     psi,
                   const MPI_Comm                   comm);
 
-      /** Print the timing summary (rank 0). */
-      ~QuasiStatic();
-
       /**
        * Solve for output torque @p torque [N m] (warm-started from the
        * previous state, or from the analytical model for the first), with
@@ -71,10 +68,38 @@ namespace cycloid
             postprocess::StiffnessRow             &row,
             std::vector<postprocess::PinForceRow> &pins);
 
-      /** Write solution-NNNN.pvtu for state @p step and rewrite
-       * solution.pvd. */
+      /** The active set with node positions, to warm-start another crank
+       * angle (see warm_start()). */
+      std::vector<std::pair<SlaveNode<dim>, bool>>
+      active_set_snapshot() const
+      {
+        return contact->active_set_snapshot();
+      }
+
+      /** Warm-start the next solve from another state's active set: each
+       * node takes the flag of the nearest node of that state on the same
+       * disc and pin. */
       void
-      output_results(const unsigned int step);
+      warm_start(const std::vector<std::pair<SlaveNode<dim>, bool>> &snapshot)
+      {
+        contact->transfer_active_set(snapshot);
+        warm = !snapshot.empty();
+      }
+
+      /** Print the timing summary of this object's stages (rank 0). */
+      void
+      print_timing() const
+      {
+        timer.print_summary();
+      }
+
+      /** Write solution-NNNN.pvtu for state @p step and rewrite
+       * solution.pvd (the record lists every state written by this
+       * object and @p previous). */
+      void
+      output_results(
+        const unsigned int                                  step,
+        std::vector<std::pair<double, std::string>> &records);
 
     private:
       void
@@ -105,7 +130,6 @@ namespace cycloid
       std::unique_ptr<PinModel<dim>>             pin_model;
       std::unique_ptr<ContactProblem<dim>>       contact;
       bool                                       warm = false;
-      std::vector<std::pair<double, std::string>> written;
     };
   } // namespace contact
 } // namespace cycloid

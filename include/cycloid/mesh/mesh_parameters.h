@@ -48,6 +48,8 @@ namespace cycloid
       unsigned int degree = 1;
       /** Adaptive refinement cycles at the active contact nodes. */
       unsigned int adaptive_cycles = 0;
+      /** Mesh psi mod the mesh period and turn by whole pin pitches. */
+      bool periodic = true;
       /** Write the gmsh mesh (with physical groups) as stage.msh. */
       bool write_msh = false;
 

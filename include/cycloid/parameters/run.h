@@ -30,6 +30,8 @@ namespace cycloid
       std::string mode_name = "analytic";
       /** Output directory (created if missing). */
       std::string output_directory = "output";
+      /** Write the VTU fields of every FE state. */
+      bool write_solution = true;
 
       /** Declare the top-level entries. */
       static void
