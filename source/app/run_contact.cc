@@ -76,24 +76,28 @@ namespace cycloid
           std::cout << "cycloid-contact: quasi-static FE contact, "
                     << scene_description(prm) << ", crank angle "
                     << prm.loading.crank_angle_deg << " deg, "
-                    << prm.loading.torques.size() << " torque(s)" << std::endl;
+                    << prm.loading.load_values().size()
+                    << (prm.loading.rotation_control ? " rotation(s)" :
+                                                       " torque(s)")
+                    << std::endl;
         // The scene is checked while it is built: no result files for a
         // scene that cannot be solved.
         contact::QuasiStatic<dim> solver(prm, psi, comm);
         postprocess::ResultWriter writer(prm.run.output_directory, root);
         std::vector<std::pair<double, std::string>> records;
-        for (unsigned int step = 0; step < prm.loading.torques.size(); ++step)
+        const std::vector<double> loads = prm.loading.load_values();
+        for (unsigned int step = 0; step < loads.size(); ++step)
           {
             postprocess::StiffnessRow             row;
             std::vector<postprocess::PinForceRow> pins;
-            solver.solve(prm.loading.torques[step], row, pins);
+            solver.solve(loads[step], row, pins);
             report_state(root,
                          step,
                          prm.loading.crank_angle_deg,
                          row,
                          pins,
                          "  state " + std::to_string(step + 1) + "/" +
-                           std::to_string(prm.loading.torques.size()) + ": ");
+                           std::to_string(loads.size()) + ": ");
             writer.write(row, pins);
             if (prm.run.write_solution)
               solver.output_results(step, records);
@@ -111,7 +115,7 @@ namespace cycloid
         const geometry::CycloidGeometry geo(prm.geometry);
         const std::vector<double>       angles =
           prm.loading.crank_angles(geo.mesh_period());
-        const std::vector<double> &torques  = prm.loading.torques;
+        const std::vector<double>  torques  = prm.loading.load_values();
         const double               to_deg   = 180. / dealii::numbers::PI;
         const unsigned int         n_states = angles.size() * torques.size();
         if (root)
@@ -170,7 +174,8 @@ namespace cycloid
         if (!root)
           return;
         std::ofstream out(prm.run.output_directory + "/fluctuation.csv");
-        out << "torque_Nm,n_phases,K_tangent_mean_Nm_per_rad,"
+        out << (prm.loading.rotation_control ? "rotation_rad" : "torque_Nm")
+            << ",n_phases,K_tangent_mean_Nm_per_rad,"
                "K_tangent_min_Nm_per_rad,K_tangent_max_Nm_per_rad,"
                "K_tangent_fluctuation,K_secant_mean_Nm_per_rad,"
                "K_secant_fluctuation,K_tangent_period_closure\n"

@@ -184,13 +184,18 @@ namespace cycloid
 
     template <int dim>
     ContactState
-    QuasiStatic<dim>::solve_state(const double torque)
+    QuasiStatic<dim>::solve_state(const double load)
     {
       dealii::TimerOutput::Scope t(timer, "solve (active set)");
       std::ostringstream         label;
-      label << "crank angle " << psi * 180. / dealii::numbers::PI
-            << " deg, torque " << torque << " N m";
-      return contact->solve_load(torque * 1e3 / width_scale(), label.str());
+      label << "crank angle " << psi * 180. / dealii::numbers::PI << " deg, ";
+      if (prm.loading.rotation_control)
+        {
+          label << "rotation " << load << " rad";
+          return contact->solve_displacement(load, label.str());
+        }
+      label << "torque " << load << " N m";
+      return contact->solve_load(load * 1e3 / width_scale(), label.str());
     }
 
 
@@ -235,7 +240,7 @@ namespace cycloid
 
     template <int dim>
     void
-    QuasiStatic<dim>::solve(const double                           torque,
+    QuasiStatic<dim>::solve(const double                           load,
                             postprocess::StiffnessRow             &row,
                             std::vector<postprocess::PinForceRow> &pins)
     {
@@ -244,8 +249,10 @@ namespace cycloid
         {
           // First state: the nodes that the analytical model's rotation
           // pushes into the pins (an empty set leaves the discs free).
-          const analytic::StageModel model(prm);
-          const double beta = model.solve(psi, torque, 0.).rotation;
+          const double beta =
+            prm.loading.rotation_control ?
+              load :
+              analytic::StageModel(prm).solve(psi, load, 0.).rotation;
           contact->initialise_active_set([&](const SlaveNode<dim> &s) {
             const dealii::Point<2> c = geo.disc_centre(s.body, psi);
             const double n_dot_u     = beta * (s.normal[1] * (s.position[0] - c[0]) -
@@ -254,7 +261,7 @@ namespace cycloid
           });
           warm = true;
         }
-      ContactState state = solve_state(torque);
+      ContactState state = solve_state(load);
       unsigned int iterations = state.iterations;
       for (unsigned int cycle = 0; cycle < prm.mesh.adaptive_cycles; ++cycle)
         {
@@ -262,11 +269,14 @@ namespace cycloid
           refine_at_contacts();
           if (contact->elasticity().n_dofs() == n)
             break;
-          state = solve_state(torque);
+          state = solve_state(load);
           iterations += state.iterations;
         }
       {
         dealii::TimerOutput::Scope t(timer, "pin forces");
+        const double torque = prm.loading.rotation_control ?
+                                state.reaction * width_scale() * 1e-3 :
+                                load;
         pin_forces(torque, state, row, pins);
       }
       row.iterations = iterations;

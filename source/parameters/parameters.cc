@@ -96,6 +96,19 @@ namespace cycloid
                           "Output torque of the whole stage [N m]; a "
                           "comma-separated list is a torque sweep, solved in "
                           "the given order at every crank angle.");
+        prm.declare_entry("Control",
+                          "torque",
+                          Selection("torque|rotation"),
+                          "FE runs: prescribe the output torque (Torque; "
+                          "the rotation beta follows) or the rotation of the "
+                          "discs' load surfaces (Rotation; the reaction "
+                          "torque follows).");
+        prm.declare_entry("Rotation",
+                          "0.01",
+                          List(Double(-10, 10), 1),
+                          "Rotations beta of the discs' load surfaces for "
+                          "Control = rotation [degrees]; a list is solved in "
+                          "order.");
         prm.declare_entry("Crank angle",
                           "0",
                           Double(-3600, 3600),
@@ -121,6 +134,9 @@ namespace cycloid
         torques = dealii::Utilities::string_to_double(
           dealii::Utilities::split_string_list(prm.get("Torque")));
         crank_angle_deg = prm.get_double("Crank angle");
+        rotation_control = prm.get("Control") == "rotation";
+        rotations_deg    = dealii::Utilities::string_to_double(
+          dealii::Utilities::split_string_list(prm.get("Rotation")));
         n_phases        = prm.get_integer("Number of phases");
       }
       prm.leave_subsection();

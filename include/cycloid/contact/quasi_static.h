@@ -58,13 +58,15 @@ namespace cycloid
                   const MPI_Comm                   comm);
 
       /**
-       * Solve for output torque @p torque [N m] (warm-started from the
-       * previous state, or from the analytical model for the first), with
+       * Solve for output torque @p load [N m] (or, with Loading/Control =
+       * rotation, for the rotation @p load [rad]), warm-started from the
+       * previous state, or for the first from the analytical model (the
+       * rigid rotation), with
        * `Mesh/Adaptive refinement cycles` refinements at the active
        * contact; fill the CSV rows.
        */
       void
-      solve(const double                           torque,
+      solve(const double                           load,
             postprocess::StiffnessRow             &row,
             std::vector<postprocess::PinForceRow> &pins);
 
@@ -107,7 +109,7 @@ namespace cycloid
       void
       setup_system();
       ContactState
-      solve_state(const double torque);
+      solve_state(const double load);
       void
       refine_at_contacts();
       void

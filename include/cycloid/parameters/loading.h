@@ -19,6 +19,22 @@ namespace cycloid
     {
       /** Output torques of the whole stage [N m], solved in this order. */
       std::vector<double> torques{1000.};
+      /** FE runs: prescribe rotations instead of torques. */
+      bool rotation_control = false;
+      /** Rotations for rotation control [degrees]. */
+      std::vector<double> rotations_deg{0.01};
+      /** The load values of the states: torques [N m], or rotations
+       * [rad] under rotation control. */
+      std::vector<double>
+      load_values() const
+      {
+        if (!rotation_control)
+          return torques;
+        std::vector<double> r;
+        for (const double d : rotations_deg)
+          r.push_back(d * 3.14159265358979323846 / 180.);
+        return r;
+      }
       /** Crank angle of a single state, and start of a phase sweep
        * [degrees]. */
       double crank_angle_deg = 0.;
