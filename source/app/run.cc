@@ -41,12 +41,13 @@ namespace cycloid
               run_mesh<3>(prm, comm);
             return;
           default:
-            AssertThrow(false,
-                        dealii::ExcMessage(
-                          "Run = " + prm.run.mode_name +
-                          " is not available in this version: Run = "
-                          "analytic, mesh, quasi-static and phase-sweep are implemented so far (the rest is tracked in "
-                          "the project's issues)."));
+            AssertThrow(
+              false,
+              dealii::ExcMessage(
+                "Run = " + prm.run.mode_name +
+                " is not available in this version: Run = "
+                "analytic, mesh, quasi-static and phase-sweep are implemented so far (the rest is tracked in "
+                "the project's issues)."));
         }
     }
 

@@ -44,9 +44,8 @@ namespace cycloid
                     << ", K_tangent " << row.k_tangent << " N m/rad ("
                     << row.k_tangent * postprocess::rad_per_arcmin
                     << " N m/arcmin), pins " << row.pins_in_contact
-                    << ", active-set iterations " << row.iterations
-                    << ", dofs " << row.dofs << ", " << row.wall_s << " s"
-                    << std::endl;
+                    << ", active-set iterations " << row.iterations << ", dofs "
+                    << row.dofs << ", " << row.wall_s << " s" << std::endl;
       }
 
 
@@ -69,7 +68,7 @@ namespace cycloid
       void
       quasi_static(const parameters::AllParameters &prm, const MPI_Comm comm)
       {
-        const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+        const bool   root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
         const double psi =
           prm.loading.crank_angle_deg * dealii::numbers::PI / 180.;
         if (root)
@@ -115,21 +114,20 @@ namespace cycloid
         const geometry::CycloidGeometry geo(prm.geometry);
         const std::vector<double>       angles =
           prm.loading.crank_angles(geo.mesh_period());
-        const std::vector<double>  torques  = prm.loading.load_values();
-        const double               to_deg   = 180. / dealii::numbers::PI;
-        const unsigned int         n_states = angles.size() * torques.size();
+        const std::vector<double> torques  = prm.loading.load_values();
+        const double              to_deg   = 180. / dealii::numbers::PI;
+        const unsigned int        n_states = angles.size() * torques.size();
         if (root)
           std::cout << "cycloid-contact: phase sweep, FE contact, "
                     << scene_description(prm) << ", " << angles.size()
                     << " crank angles over " << geo.mesh_period() * to_deg
-                    << " deg x " << torques.size() << " torque(s)"
-                    << std::endl;
-        std::unique_ptr<postprocess::ResultWriter> writer;
+                    << " deg x " << torques.size() << " torque(s)" << std::endl;
+        std::unique_ptr<postprocess::ResultWriter>  writer;
         std::vector<std::pair<double, std::string>> records;
         // Per torque: the last phase's active set (warm start) and the
         // stiffness over the phases.
         std::vector<std::vector<std::pair<contact::SlaveNode<dim>, bool>>>
-          snapshots(torques.size());
+                                         snapshots(torques.size());
         std::vector<std::vector<double>> k_tangent(torques.size()),
           k_secant(torques.size());
         const auto   start = std::chrono::steady_clock::now();
@@ -155,12 +153,11 @@ namespace cycloid
                 prefix << "  phase " << k + 1 << "/" << angles.size()
                        << " (crank " << std::setprecision(5)
                        << angles[k] * to_deg << " deg), elapsed "
-                       << std::setprecision(3) << elapsed
-                       << " s, remaining ~"
+                       << std::setprecision(3) << elapsed << " s, remaining ~"
                        << elapsed * (n_states - step - 1) / (step + 1)
                        << " s: " << std::setprecision(6);
-                report_state(root, step, angles[k] * to_deg, row, pins,
-                             prefix.str());
+                report_state(
+                  root, step, angles[k] * to_deg, row, pins, prefix.str());
                 writer->write(row, pins);
                 if (prm.run.write_solution)
                   solver.output_results(step, records);
@@ -184,19 +181,20 @@ namespace cycloid
           {
             const auto stats = [](const std::vector<double> &v) {
               const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-              double     mean     = 0;
+              double mean         = 0;
               for (const double x : v)
                 mean += x;
               mean /= v.size();
-              return std::array<double, 4>{{mean, *lo, *hi, (*hi - *lo) / mean}};
+              return std::array<double, 4>{
+                {mean, *lo, *hi, (*hi - *lo) / mean}};
             };
             const auto   kt = stats(k_tangent[t]);
             const auto   ks = stats(k_secant[t]);
             const double closure =
               k_tangent[t].back() / k_tangent[t].front() - 1;
             out << torques[t] << ',' << angles.size() << ',' << kt[0] << ','
-                << kt[1] << ',' << kt[2] << ',' << kt[3] << ',' << ks[0]
-                << ',' << ks[3] << ',' << closure << '\n';
+                << kt[1] << ',' << kt[2] << ',' << kt[3] << ',' << ks[0] << ','
+                << ks[3] << ',' << closure << '\n';
             std::cout << "  torque " << torques[t]
                       << " N m: K_tangent over the period mean " << kt[0]
                       << ", min " << kt[1] << ", max " << kt[2]

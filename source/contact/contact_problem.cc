@@ -51,9 +51,10 @@ namespace cycloid
       : comm(triangulation.get_communicator())
       , settings(settings)
       , materials(materials)
-      , problem(std::make_unique<elasticity::LinearElasticity<dim>>(triangulation,
-                                                                    degree,
-                                                                    materials))
+      , problem(
+          std::make_unique<elasticity::LinearElasticity<dim>>(triangulation,
+                                                              degree,
+                                                              materials))
     {}
 
 
@@ -145,10 +146,11 @@ namespace cycloid
                 for (const unsigned int v : cell->face(f)->vertex_indices())
                   {
                     const auto x = cell->face(f)->vertex(v);
-                    box[1]       = std::max(
-                      box[1],
-                      std::abs(std::remainder(std::atan2(x[1] - c[1], x[0] - c[0]) - a0,
-                                              2. * dealii::numbers::PI)));
+                    box[1] =
+                      std::max(box[1],
+                               std::abs(std::remainder(
+                                 std::atan2(x[1] - c[1], x[0] - c[0]) - a0,
+                                 2. * dealii::numbers::PI)));
                     box[2] = std::min(box[2], x[dim - 1]);
                     box[3] = std::max(box[3], x[dim - 1]);
                   }
@@ -165,43 +167,44 @@ namespace cycloid
       const unsigned int                                             j,
       const dealii::Point<dim>                                      &P,
       std::array<std::vector<dealii::types::global_dof_index>, dim> &dofs,
-      std::array<std::vector<double>, dim>                          &weights)
-      const
+      std::array<std::vector<double>, dim> &weights) const
     {
-      const auto &fe      = problem->finite_element();
+      const auto &fe = problem->finite_element();
       // Unit coordinates of P on a face from the (angle, z) coordinates of
       // its vertices on the cylinder: the manifold places refined vertices
       // and the mapping's support points uniformly in angle and z, so the
       // bilinear (linear in 2D) interpolation of (angle, z) is exact.
-      const MasterCylinder &m     = cylinders[j];
-      const double          theta = std::atan2(P[1] - m.centre[1], P[0] - m.centre[0]);
+      const MasterCylinder &m = cylinders[j];
+      const double theta = std::atan2(P[1] - m.centre[1], P[0] - m.centre[0]);
       constexpr unsigned int n_face_vertices = 1u << (dim - 1);
       for (unsigned int k = 0; k < master_faces[j].size(); ++k)
         {
           // Quick rejection by the face's (angle, z) box.
           const auto &box = master_boxes[j][k];
-          if (std::abs(std::remainder(theta - box[0], 2. * dealii::numbers::PI)) >
+          if (std::abs(
+                std::remainder(theta - box[0], 2. * dealii::numbers::PI)) >
                 box[1] + 1e-9 ||
-              (dim == 3 && (P[dim - 1] < box[2] - 1e-9 || P[dim - 1] > box[3] + 1e-9)))
+              (dim == 3 &&
+               (P[dim - 1] < box[2] - 1e-9 || P[dim - 1] > box[3] + 1e-9)))
             continue;
           const auto &[cell, f] = master_faces[j][k];
           std::array<unsigned int, dim - 1> axes;
           for (unsigned int a = 0, n = 0; a < dim; ++a)
             if (a != f / 2)
               axes[n++] = a;
-          std::array<std::array<double, 2>, n_face_vertices>      rel;
+          std::array<std::array<double, 2>, n_face_vertices>       rel;
           std::array<std::array<double, dim - 1>, n_face_vertices> corner;
           for (unsigned int v = 0; v < n_face_vertices; ++v)
             {
               const unsigned int cv =
                 dealii::GeometryInfo<dim>::face_to_cell_vertices(f, v);
               const auto x = cell->vertex(cv);
-              rel[v][0]    = m.radius *
-                          std::remainder(std::atan2(x[1] - m.centre[1],
-                                                    x[0] - m.centre[0]) -
-                                           theta,
-                                         2. * dealii::numbers::PI);
-              rel[v][1] = dim == 3 ? x[dim - 1] - P[dim - 1] : 0.;
+              rel[v][0] =
+                m.radius * std::remainder(std::atan2(x[1] - m.centre[1],
+                                                     x[0] - m.centre[0]) -
+                                            theta,
+                                          2. * dealii::numbers::PI);
+              rel[v][1]    = dim == 3 ? x[dim - 1] - P[dim - 1] : 0.;
               const auto u = dealii::GeometryInfo<dim>::unit_cell_vertex(cv);
               for (unsigned int a = 0; a < dim - 1; ++a)
                 corner[v][a] = u[axes[a]];
@@ -217,7 +220,7 @@ namespace cycloid
                   double N = 1, dN[2] = {1, 1};
                   for (unsigned int a = 0; a < dim - 1; ++a)
                     {
-                      const double l = corner[v][a] > 0.5 ? xi[a] : 1 - xi[a];
+                      const double l  = corner[v][a] > 0.5 ? xi[a] : 1 - xi[a];
                       const double dl = corner[v][a] > 0.5 ? 1. : -1.;
                       N *= l;
                       for (unsigned int b = 0; b < dim - 1; ++b)
@@ -288,7 +291,8 @@ namespace cycloid
                                           dealii::update_JxW_values);
       const auto &unit_points = fe.base_element(0).get_unit_support_points();
       std::map<dealii::types::global_dof_index, unsigned int> index_of;
-      std::vector<dealii::types::global_dof_index> indices(fe.n_dofs_per_cell());
+      std::vector<dealii::types::global_dof_index>            indices(
+        fe.n_dofs_per_cell());
       for (const auto &cell : problem->dof_handler().active_cell_iterators())
         {
           if (!slave_bodies.count(cell->material_id()))
@@ -302,9 +306,9 @@ namespace cycloid
               fe_face.reinit(cell, f);
               for (unsigned int k = 0; k < fe.n_dofs_per_face(f); ++k)
                 {
-                  const unsigned int i =
-                    fe.face_to_cell_index(k, f);
-                  const auto [component, node] = fe.system_to_component_index(i);
+                  const unsigned int i = fe.face_to_cell_index(k, f);
+                  const auto [component, node] =
+                    fe.system_to_component_index(i);
                   if (component != 0)
                     continue;
                   double w = 0;
@@ -314,12 +318,14 @@ namespace cycloid
                   const auto known = index_of.find(indices[i]);
                   if (known != index_of.end())
                     {
-                      if (known->second != dealii::numbers::invalid_unsigned_int)
+                      if (known->second !=
+                          dealii::numbers::invalid_unsigned_int)
                         slaves[known->second].weight += w;
                       continue;
                     }
                   const dealii::Point<dim> x =
-                    mapping.transform_unit_to_real_cell(cell, unit_points[node]);
+                    mapping.transform_unit_to_real_cell(cell,
+                                                        unit_points[node]);
                   unsigned int nearest = 0;
                   double       d       = std::numeric_limits<double>::max();
                   for (unsigned int j = 0; j < cylinders.size(); ++j)
@@ -331,7 +337,8 @@ namespace cycloid
                   const double gap = d - cylinders[nearest].radius;
                   if (gap > settings.search_distance)
                     {
-                      index_of[indices[i]] = dealii::numbers::invalid_unsigned_int;
+                      index_of[indices[i]] =
+                        dealii::numbers::invalid_unsigned_int;
                       continue;
                     }
                   SlaveNode<dim> s;
@@ -344,7 +351,7 @@ namespace cycloid
                   s.weight = w;
                   for (unsigned int c = 0; c < dim; ++c)
                     s.dofs[c] = indices[fe.component_to_system_index(c, node)];
-                  s.hanging = hanging.is_constrained(s.dofs[0]);
+                  s.hanging            = hanging.is_constrained(s.dofs[0]);
                   index_of[indices[i]] = slaves.size();
                   slaves.push_back(s);
                 }
@@ -370,7 +377,8 @@ namespace cycloid
           AssertThrow(master_weights(s.cylinder, P, dofs, w),
                       dealii::ExcMessage(
                         "contact: no face of master body " +
-                        std::to_string(m.body) + " holds the projection of a "
+                        std::to_string(m.body) +
+                        " holds the projection of a "
                         "slave node; is the master surface meshed?"));
           for (unsigned int c = 0; c < 2; ++c)
             for (unsigned int a = 0; a < dofs[c].size(); ++a)
@@ -404,7 +412,8 @@ namespace cycloid
       std::vector<dealii::Tensor<1, dim>> normals(slaves.size());
       std::vector<std::map<dealii::types::global_dof_index, double>> coef(
         slaves.size());
-      std::vector<dealii::types::global_dof_index> indices(fe.n_dofs_per_cell());
+      std::vector<dealii::types::global_dof_index> indices(
+        fe.n_dofs_per_cell());
       for (const auto &cell : problem->dof_handler().active_cell_iterators())
         {
           if (!slave_bodies.count(cell->material_id()))
@@ -428,9 +437,10 @@ namespace cycloid
                                     dealii::numbers::invalid_unsigned_int :
                                     it->second);
                 }
-              if (std::all_of(slave.begin(), slave.end(), [](const unsigned int s) {
-                    return s == dealii::numbers::invalid_unsigned_int;
-                  }))
+              if (std::all_of(
+                    slave.begin(), slave.end(), [](const unsigned int s) {
+                      return s == dealii::numbers::invalid_unsigned_int;
+                    }))
                 continue;
               fe_face.reinit(cell, f);
               // Dual basis psi_a = sum_b A_ab phi_b with A = D M^-1
@@ -444,19 +454,22 @@ namespace cycloid
                     const double pa = fe_face.shape_value(local[a], q);
                     D(a) += pa * fe_face.JxW(q);
                     for (unsigned int b = 0; b < n; ++b)
-                      M(a, b) += pa * fe_face.shape_value(local[b], q) *
-                                 fe_face.JxW(q);
+                      M(a, b) +=
+                        pa * fe_face.shape_value(local[b], q) * fe_face.JxW(q);
                   }
               Minv.invert(M);
               for (const unsigned int q : fe_face.quadrature_point_indices())
                 {
                   const dealii::Point<dim> x = fe_face.quadrature_point(q);
                   // Per cylinder met on this face: gap, normal, master weights.
-                  std::map<unsigned int,
-                           std::tuple<double,
-                                      dealii::Tensor<1, 2>,
-                                      std::array<std::vector<dealii::types::global_dof_index>, dim>,
-                                      std::array<std::vector<double>, dim>>>
+                  std::map<
+                    unsigned int,
+                    std::tuple<
+                      double,
+                      dealii::Tensor<1, 2>,
+                      std::array<std::vector<dealii::types::global_dof_index>,
+                                 dim>,
+                      std::array<std::vector<double>, dim>>>
                     at;
                   for (unsigned int a = 0; a < n; ++a)
                     {
@@ -469,39 +482,46 @@ namespace cycloid
                       if (it == at.end())
                         {
                           const MasterCylinder &m = cylinders[s.cylinder];
-                          const double d = planar_distance(x, m.centre);
+                          const double         d = planar_distance(x, m.centre);
                           dealii::Tensor<1, 2> normal;
                           normal[0] = (x[0] - m.centre[0]) / d;
                           normal[1] = (x[1] - m.centre[1]) / d;
-                          std::array<std::vector<dealii::types::global_dof_index>, dim> mdofs;
+                          std::array<
+                            std::vector<dealii::types::global_dof_index>,
+                            dim>
+                                                               mdofs;
                           std::array<std::vector<double>, dim> mw;
                           if (deformable_masters)
                             {
                               dealii::Point<dim> P = x;
                               for (unsigned int c = 0; c < 2; ++c)
                                 P[c] = m.centre[c] + m.radius * normal[c];
-                              AssertThrow(master_weights(s.cylinder, P, mdofs, mw),
-                                          dealii::ExcMessage(
-                                            "contact: no face of master body " +
-                                            std::to_string(m.body) +
-                                            " holds the projection of a slave "
-                                            "quadrature point."));
+                              AssertThrow(
+                                master_weights(s.cylinder, P, mdofs, mw),
+                                dealii::ExcMessage(
+                                  "contact: no face of master body " +
+                                  std::to_string(m.body) +
+                                  " holds the projection of a slave "
+                                  "quadrature point."));
                             }
                           it = at.emplace(s.cylinder,
-                                          std::make_tuple(d - m.radius, normal, mdofs, mw))
+                                          std::make_tuple(
+                                            d - m.radius, normal, mdofs, mw))
                                  .first;
                         }
                       const auto &[g, normal, mdofs, mw] = it->second;
                       (void)g;
                       double psi = 0;
                       for (unsigned int b = 0; b < n; ++b)
-                        psi += D(a) * Minv(a, b) * fe_face.shape_value(local[b], q);
+                        psi +=
+                          D(a) * Minv(a, b) * fe_face.shape_value(local[b], q);
                       const double w = psi * fe_face.JxW(q);
                       for (unsigned int c = 0; c < 2; ++c)
                         normals[slave[a]][c] += w * normal[c];
                       for (unsigned int c = 0; c < 2; ++c)
                         for (unsigned int k = 0; k < mdofs[c].size(); ++k)
-                          coef[slave[a]][mdofs[c][k]] += w * normal[c] * mw[c][k];
+                          coef[slave[a]][mdofs[c][k]] +=
+                            w * normal[c] * mw[c][k];
                     }
                 }
             }
@@ -544,7 +564,8 @@ namespace cycloid
       const auto &hanging     = problem->hanging_node_constraints();
       const auto &unit_points = fe.base_element(0).get_unit_support_points();
       std::set<dealii::types::global_dof_index>    done;
-      std::vector<dealii::types::global_dof_index> indices(fe.n_dofs_per_cell());
+      std::vector<dealii::types::global_dof_index> indices(
+        fe.n_dofs_per_cell());
       for (const auto &cell : problem->dof_handler().active_cell_iterators())
         {
           if (cell->material_id() != tied_body)
@@ -557,14 +578,15 @@ namespace cycloid
               cell->get_dof_indices(indices);
               for (unsigned int k = 0; k < fe.n_dofs_per_face(f); ++k)
                 {
-                  const unsigned int i =
-                    fe.face_to_cell_index(k, f);
-                  const auto [component, node] = fe.system_to_component_index(i);
+                  const unsigned int i = fe.face_to_cell_index(k, f);
+                  const auto [component, node] =
+                    fe.system_to_component_index(i);
                   if (component != 0 || !done.insert(indices[i]).second ||
                       hanging.is_constrained(indices[i]))
                     continue;
                   const dealii::Point<dim> x =
-                    mapping.transform_unit_to_real_cell(cell, unit_points[node]);
+                    mapping.transform_unit_to_real_cell(cell,
+                                                        unit_points[node]);
                   unsigned int nearest = 0;
                   double       d       = std::numeric_limits<double>::max();
                   for (unsigned int j = 0; j < cylinders.size(); ++j)
@@ -667,7 +689,8 @@ namespace cycloid
           bool   flag = false;
           for (const auto *entry : g->second)
             {
-              const double d = entry->first.position.distance(slaves[i].position);
+              const double d =
+                entry->first.position.distance(slaves[i].position);
               if (d < best)
                 {
                   best = d;
@@ -683,7 +706,8 @@ namespace cycloid
 
     template <int dim>
     std::function<void(dealii::AffineConstraints<double> &)>
-    ContactProblem<dim>::constraints(const bool with_gaps, const double beta) const
+    ContactProblem<dim>::constraints(const bool   with_gaps,
+                                     const double beta) const
     {
       return [this, with_gaps, beta](dealii::AffineConstraints<double> &c) {
         for (const auto d : fixed)
@@ -746,7 +770,8 @@ namespace cycloid
 
     template <int dim>
     ContactState
-    ContactProblem<dim>::solve_load(const double target, const std::string &label)
+    ContactProblem<dim>::solve_load(const double       target,
+                                    const std::string &label)
     {
       return solve_state(true, target, label);
     }
@@ -782,12 +807,13 @@ namespace cycloid
                         " iterations (Contact/Maximum active set iterations) "
                         "at " +
                         label + "."));
-          problem->setup_constraints({constraints(true, 0.), constraints(false, 1.)});
+          problem->setup_constraints(
+            {constraints(true, 0.), constraints(false, 1.)});
           problem->assemble_sets({});
-          state.linear_iterations +=
-            problem->solve_set(0, settings.solver, settings.solver_tolerance, u0);
-          state.linear_iterations +=
-            problem->solve_set(1, settings.solver, settings.solver_tolerance, u1);
+          state.linear_iterations += problem->solve_set(
+            0, settings.solver, settings.solver_tolerance, u0);
+          state.linear_iterations += problem->solve_set(
+            1, settings.solver, settings.solver_tolerance, u1);
           f0               = problem->internal_forces(u0);
           f1               = problem->internal_forces(u1);
           const double q0  = reaction(f0);
@@ -819,21 +845,23 @@ namespace cycloid
               double gap = s.gap0, lambda = 0;
               for (unsigned int c = 0; c < 2; ++c)
                 {
-                  gap += s.normal[c] *
-                         (u0[s.dofs[c]] + state.beta * u1[s.dofs[c]]);
-                  lambda += s.normal[c] *
-                            (f0[s.dofs[c]] + state.beta * f1[s.dofs[c]]);
+                  gap +=
+                    s.normal[c] * (u0[s.dofs[c]] + state.beta * u1[s.dofs[c]]);
+                  lambda +=
+                    s.normal[c] * (f0[s.dofs[c]] + state.beta * f1[s.dofs[c]]);
                 }
               for (unsigned int a = 0; a < s.master_dofs.size(); ++a)
-                gap -= s.master_coefficients[a] *
-                       (u0[s.master_dofs[a]] + state.beta * u1[s.master_dofs[a]]);
+                gap -=
+                  s.master_coefficients[a] *
+                  (u0[s.master_dofs[a]] + state.beta * u1[s.master_dofs[a]]);
               my_gaps[i]            = gap;
               const bool was_active = active.count(i);
               if ((was_active && lambda > 0) || (!was_active && gap < 0))
                 mine.push_back(i);
             }
           std::set<unsigned int> next;
-          for (const auto &part : dealii::Utilities::MPI::all_gather(comm, mine))
+          for (const auto &part :
+               dealii::Utilities::MPI::all_gather(comm, mine))
             next.insert(part.begin(), part.end());
           dealii::Utilities::MPI::sum(my_gaps, comm, gaps);
           if (std::getenv("CYCLOID_DEBUG") &&
@@ -872,12 +900,13 @@ namespace cycloid
                     std::to_string(state.residual) + " (relative) at " + label +
                     ", above " + std::to_string(settings.residual_tolerance) +
                     "; tighten Solver/Relative tolerance."));
-      std::vector<double> mine(slaves.size() * dim, 0.), all(slaves.size() * dim);
+      std::vector<double> mine(slaves.size() * dim, 0.),
+        all(slaves.size() * dim);
       for (const unsigned int i : active)
         if (owned.is_element(slaves[i].dofs[0]))
           for (unsigned int c = 0; c < dim; ++c)
-            mine[i * dim + c] = f0[slaves[i].dofs[c]] +
-                                state.beta * f1[slaves[i].dofs[c]];
+            mine[i * dim + c] =
+              f0[slaves[i].dofs[c]] + state.beta * f1[slaves[i].dofs[c]];
       dealii::Utilities::MPI::sum(mine, comm, all);
       for (unsigned int i = 0; i < slaves.size(); ++i)
         for (unsigned int c = 0; c < dim; ++c)
@@ -926,12 +955,12 @@ namespace cycloid
               for (unsigned int a = 0; a < 3; ++a)
                 for (unsigned int b = 0; b < 3; ++b)
                   s[a][b] = 2 * mu * eps[a][b] + (a == b ? lambda * tr : 0.);
-              computed[q](0) = std::sqrt(
-                0.5 * ((s[0][0] - s[1][1]) * (s[0][0] - s[1][1]) +
-                       (s[1][1] - s[2][2]) * (s[1][1] - s[2][2]) +
-                       (s[2][2] - s[0][0]) * (s[2][2] - s[0][0])) +
-                3 * (s[0][1] * s[0][1] + s[1][2] * s[1][2] +
-                     s[0][2] * s[0][2]));
+              computed[q](0) =
+                std::sqrt(0.5 * ((s[0][0] - s[1][1]) * (s[0][0] - s[1][1]) +
+                                 (s[1][1] - s[2][2]) * (s[1][1] - s[2][2]) +
+                                 (s[2][2] - s[0][0]) * (s[2][2] - s[0][0])) +
+                          3 * (s[0][1] * s[0][1] + s[1][2] * s[1][2] +
+                               s[0][2] * s[0][2]));
             }
         }
 
@@ -958,10 +987,11 @@ namespace cycloid
           double lambda = 0;
           for (unsigned int c = 0; c < dim; ++c)
             lambda += reactions[i][c] * slaves[i].normal[c];
-          const double values[3] = {
-            slaves[i].weight > 0 ? lambda / slaves[i].weight : 0.,
-            active.count(i) ? 1. : 0.,
-            gaps[i] * 1e3};
+          const double values[3] = {slaves[i].weight > 0 ?
+                                      lambda / slaves[i].weight :
+                                      0.,
+                                    active.count(i) ? 1. : 0.,
+                                    gaps[i] * 1e3};
           for (unsigned int c = 0; c < dim; ++c)
             if (owned.is_element(slaves[i].dofs[c]))
               contact[slaves[i].dofs[c]] = values[c];
@@ -976,12 +1006,15 @@ namespace cycloid
       const std::vector<
         dealii::DataComponentInterpretation::DataComponentInterpretation>
         vector(
-          dim, dealii::DataComponentInterpretation::component_is_part_of_vector);
+          dim,
+          dealii::DataComponentInterpretation::component_is_part_of_vector);
       data_out.add_data_vector(u_last,
                                std::vector<std::string>(dim, "displacement"),
                                dealii::DataOut<dim>::type_dof_data,
                                vector);
-      std::vector<std::string> names{"contact_pressure", "active_set", "gap_um"};
+      std::vector<std::string> names{"contact_pressure",
+                                     "active_set",
+                                     "gap_um"};
       names.resize(dim);
       data_out.add_data_vector(contact_g, names);
       const VonMises<dim> von_mises(materials);
@@ -1012,8 +1045,8 @@ namespace cycloid
           for (unsigned int k = 0;
                k < dealii::Utilities::MPI::n_mpi_processes(comm);
                ++k)
-            pieces.push_back(name + "." + dealii::Utilities::int_to_string(k, 4) +
-                             ".vtu");
+            pieces.push_back(name + "." +
+                             dealii::Utilities::int_to_string(k, 4) + ".vtu");
           std::ofstream pvtu(directory + "/" + name + ".pvtu");
           data_out.write_pvtu_record(pvtu, pieces);
         }

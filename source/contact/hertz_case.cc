@@ -76,14 +76,13 @@ namespace cycloid
         dealii::parallel::shared::Triangulation<2>::partition_metis);
       dealii::GridGenerator::merge_triangulations(t1, t2, tria);
 
-      const auto on_circle = [](const auto             &face,
-                                const dealii::Point<2> &centre,
-                                const double            r) {
-        for (const unsigned int v : face->vertex_indices())
-          if (std::abs(face->vertex(v).distance(centre) - r) > 1e-9 * r)
-            return false;
-        return true;
-      };
+      const auto on_circle =
+        [](const auto &face, const dealii::Point<2> &centre, const double r) {
+          for (const unsigned int v : face->vertex_indices())
+            if (std::abs(face->vertex(v).distance(centre) - r) > 1e-9 * r)
+              return false;
+          return true;
+        };
       for (const auto &cell : tria.active_cell_iterators())
         {
           cell->set_material_id(cell->center().distance(c1) < c.r1 ? 1 : 2);
@@ -129,15 +128,16 @@ namespace cycloid
 
       // Held: body 2's core (convex) or the ring's outer surface (seat);
       // loaded: body 1's core moves by beta (0, -1).
-      const auto &el = problem.elasticity();
-      const auto &fe = el.finite_element();
+      const auto                 &el = problem.elasticity();
+      const auto                 &fe = el.finite_element();
       const dealii::Quadrature<2> nodes(
         fe.base_element(0).get_unit_support_points());
-      dealii::FEValues<2> values(el.mapping(),
+      dealii::FEValues<2>                          values(el.mapping(),
                                  fe,
                                  nodes,
                                  dealii::update_quadrature_points);
-      std::vector<dealii::types::global_dof_index> indices(fe.n_dofs_per_cell());
+      std::vector<dealii::types::global_dof_index> indices(
+        fe.n_dofs_per_cell());
       std::vector<dealii::types::global_dof_index>      fixed;
       std::map<dealii::types::global_dof_index, double> load;
       for (const auto &cell : el.dof_handler().active_cell_iterators())
@@ -171,24 +171,24 @@ namespace cycloid
       r.iterations = state.iterations;
       r.n_active   = state.n_active;
       double sum_f = 0, sum_fs2 = 0;
-      r.h_contact  = 1e300;
+      r.h_contact        = 1e300;
       const auto &slaves = problem.slave_nodes();
       for (const unsigned int i : problem.active_set())
         {
-          const auto  &s = slaves[i];
-          const double lambda =
-            problem.slave_reactions()[i] * s.normal;
+          const auto  &s      = slaves[i];
+          const double lambda = problem.slave_reactions()[i] * s.normal;
           // Arc length from the contact point along body 2's surface.
-          const double phi =
-            std::atan2(s.position[0] - c2[0],
-                       c.concave ? c2[1] - s.position[1] : s.position[1] - c2[1]);
+          const double phi = std::atan2(s.position[0] - c2[0],
+                                        c.concave ? c2[1] - s.position[1] :
+                                                    s.position[1] - c2[1]);
           const double arc = c.r2 * phi;
           sum_f += lambda;
           sum_fs2 += lambda * arc * arc;
           r.transmitted_force -= problem.slave_reactions()[i][1];
           r.peak_pressure = std::max(r.peak_pressure, lambda / s.weight);
           if (std::getenv("CYCLOID_DEBUG"))
-            std::cerr << arc << ' ' << lambda / s.weight << ' ' << lambda << ' ' << s.weight << std::endl;
+            std::cerr << arc << ' ' << lambda / s.weight << ' ' << lambda << ' '
+                      << s.weight << std::endl;
           for (const unsigned int k : problem.active_set())
             if (k != i)
               r.h_contact =

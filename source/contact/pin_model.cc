@@ -47,7 +47,7 @@ namespace cycloid
         void
         held_dofs(
           const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
-          const std::vector<dealii::types::global_dof_index> &indices,
+          const std::vector<dealii::types::global_dof_index>           &indices,
           dealii::FEValues<dim> &,
           std::vector<dealii::types::global_dof_index> &held) const override
         {
@@ -89,8 +89,8 @@ namespace cycloid
         void
         held_dofs(
           const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
-          const std::vector<dealii::types::global_dof_index> &indices,
-          dealii::FEValues<dim>                              &nodes,
+          const std::vector<dealii::types::global_dof_index>           &indices,
+          dealii::FEValues<dim>                                        &nodes,
           std::vector<dealii::types::global_dof_index> &held) const override
         {
           const auto m = cell->material_id();
@@ -165,7 +165,7 @@ namespace cycloid
         void
         held_dofs(
           const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
-          const std::vector<dealii::types::global_dof_index> &indices,
+          const std::vector<dealii::types::global_dof_index>           &indices,
           dealii::FEValues<dim> &,
           std::vector<dealii::types::global_dof_index> &held) const override
         {
@@ -191,7 +191,7 @@ namespace cycloid
     std::unique_ptr<PinModel<dim>>
     create_pin_model(const parameters::AllParameters &prm)
     {
-      using Scene = parameters::SceneParameters;
+      using Scene        = parameters::SceneParameters;
       const bool rigid   = prm.scene.pins == Scene::PinModel::rigid;
       const bool housing = prm.scene.pin_support == Scene::PinSupport::housing;
       AssertThrow(!(rigid && housing),

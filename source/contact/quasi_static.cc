@@ -1,8 +1,8 @@
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/numbers.h>
-#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/quadrature.h>
 
 #include <deal.II/fe/fe_values.h>
@@ -67,13 +67,12 @@ namespace cycloid
       settings.formulation        = prm.contact.formulation == "mortar" ?
                                       Formulation::mortar :
                                       Formulation::node_to_surface;
-      settings.solver =
-        prm.contact.linear_solver == "direct" ?
-          elasticity::LinearSolver::direct :
-        prm.contact.linear_solver == "cg-amg-translations" ?
-          elasticity::LinearSolver::cg_amg_translations_only :
-          elasticity::LinearSolver::cg_amg;
-      contact = std::make_unique<ContactProblem<dim>>(tria,
+      settings.solver             = prm.contact.linear_solver == "direct" ?
+                                      elasticity::LinearSolver::direct :
+                                    prm.contact.linear_solver == "cg-amg-translations" ?
+                                      elasticity::LinearSolver::cg_amg_translations_only :
+                                      elasticity::LinearSolver::cg_amg;
+      contact                     = std::make_unique<ContactProblem<dim>>(tria,
                                                       prm.mesh.degree,
                                                       materials,
                                                       settings);
@@ -109,9 +108,8 @@ namespace cycloid
     {
       dealii::TimerOutput::Scope t(timer, "make grid");
       mesh::create_stage_mesh(prm, psi, tria);
-      pcout << "  mesh: " << dim << "D, " << prm.scene.n_discs
-            << " disc(s), " << tria.n_global_active_cells() << " cells"
-            << std::endl;
+      pcout << "  mesh: " << dim << "D, " << prm.scene.n_discs << " disc(s), "
+            << tria.n_global_active_cells() << " cells" << std::endl;
     }
 
 
@@ -122,21 +120,22 @@ namespace cycloid
     {
       dealii::TimerOutput::Scope t(timer, "setup system");
       contact->setup();
-      const auto &el      = contact->elasticity();
-      const auto &fe      = el.finite_element();
-      const auto  load_id = prm.scene.load_introduction ==
-                                Scene::LoadIntroduction::bore ?
-                              ids::bore :
-                              ids::crank_hole;
+      const auto &el = contact->elasticity();
+      const auto &fe = el.finite_element();
+      const auto  load_id =
+        prm.scene.load_introduction == Scene::LoadIntroduction::bore ?
+           ids::bore :
+           ids::crank_hole;
       // Positions of a cell's nodes (support points on the exact mapping).
       const dealii::Quadrature<dim> nodes(
         fe.base_element(0).get_unit_support_points());
-      dealii::FEValues<dim> fe_values(el.mapping(),
+      dealii::FEValues<dim>                        fe_values(el.mapping(),
                                       fe,
                                       nodes,
                                       dealii::update_quadrature_points);
-      std::vector<dealii::types::global_dof_index> indices(fe.n_dofs_per_cell());
-      std::vector<dealii::types::global_dof_index> fixed;
+      std::vector<dealii::types::global_dof_index> indices(
+        fe.n_dofs_per_cell());
+      std::vector<dealii::types::global_dof_index>      fixed;
       std::map<dealii::types::global_dof_index, double> load;
       for (const auto &cell : el.dof_handler().active_cell_iterators())
         {
@@ -170,9 +169,9 @@ namespace cycloid
       unsigned int hanging = 0;
       for (const auto &s : contact->slave_nodes())
         hanging += s.hanging;
-      pcout << "  contact: pins " << pin_model->name() << ", " << el.n_dofs() << " DoFs (Q" << fe.degree
-            << "), " << contact->slave_nodes().size() << " candidate nodes ("
-            << hanging << " hanging)"
+      pcout << "  contact: pins " << pin_model->name() << ", " << el.n_dofs()
+            << " DoFs (Q" << fe.degree << "), " << contact->slave_nodes().size()
+            << " candidate nodes (" << hanging << " hanging)"
             << (contact->tied_nodes().empty() ?
                   std::string() :
                   ", " + std::to_string(contact->tied_nodes().size()) +
@@ -255,13 +254,14 @@ namespace cycloid
               analytic::StageModel(prm).solve(psi, load, 0.).rotation;
           contact->initialise_active_set([&](const SlaveNode<dim> &s) {
             const dealii::Point<2> c = geo.disc_centre(s.body, psi);
-            const double n_dot_u     = beta * (s.normal[1] * (s.position[0] - c[0]) -
-                                           s.normal[0] * (s.position[1] - c[1]));
+            const double           n_dot_u =
+              beta * (s.normal[1] * (s.position[0] - c[0]) -
+                      s.normal[0] * (s.position[1] - c[1]));
             return s.gap0 + n_dot_u < 0;
           });
           warm = true;
         }
-      ContactState state = solve_state(load);
+      ContactState state      = solve_state(load);
       unsigned int iterations = state.iterations;
       for (unsigned int cycle = 0; cycle < prm.mesh.adaptive_cycles; ++cycle)
         {
@@ -274,9 +274,9 @@ namespace cycloid
         }
       {
         dealii::TimerOutput::Scope t(timer, "pin forces");
-        const double torque = prm.loading.rotation_control ?
-                                state.reaction * width_scale() * 1e-3 :
-                                load;
+        const double               torque = prm.loading.rotation_control ?
+                                              state.reaction * width_scale() * 1e-3 :
+                                              load;
         pin_forces(torque, state, row, pins);
       }
       row.iterations = iterations;
@@ -289,27 +289,30 @@ namespace cycloid
 
     template <int dim>
     void
-    QuasiStatic<dim>::pin_forces(const double                           torque,
-                                 const ContactState                    &state,
-                                 postprocess::StiffnessRow             &row,
-                                 std::vector<postprocess::PinForceRow> &pins) const
+    QuasiStatic<dim>::pin_forces(
+      const double                           torque,
+      const ContactState                    &state,
+      postprocess::StiffnessRow             &row,
+      std::vector<postprocess::PinForceRow> &pins) const
     {
-      const double       scale = width_scale();
-      const unsigned int zp    = prm.geometry.n_pins;
-      const unsigned int nd    = prm.scene.n_discs;
+      const double       scale     = width_scale();
+      const unsigned int zp        = prm.geometry.n_pins;
+      const unsigned int nd        = prm.scene.n_discs;
       const auto        &slaves    = contact->slave_nodes();
       const auto        &reactions = contact->slave_reactions();
       // Force of each pin on each disc and its moment about the disc centre.
       std::vector<double> fx(nd * zp, 0.), fy(nd * zp, 0.), moment(nd * zp, 0.);
       for (const unsigned int i : contact->active_set())
         {
-          const auto            &s = slaves[i];
-          const unsigned int     k = s.body * zp + s.cylinder;
-          const dealii::Point<2> c = geo.disc_centre(s.body, psi);
-          const double gx = reactions[i][0] * scale, gy = reactions[i][1] * scale;
+          const auto            &s  = slaves[i];
+          const unsigned int     k  = s.body * zp + s.cylinder;
+          const dealii::Point<2> c  = geo.disc_centre(s.body, psi);
+          const double           gx = reactions[i][0] * scale,
+                       gy           = reactions[i][1] * scale;
           fx[k] += gx;
           fy[k] += gy;
-          moment[k] += (s.position[0] - c[0]) * gy - (s.position[1] - c[1]) * gx;
+          moment[k] +=
+            (s.position[0] - c[0]) * gy - (s.position[1] - c[1]) * gx;
         }
 
       row.torque_Nm          = torque;
@@ -339,8 +342,8 @@ namespace cycloid
       for (unsigned int d = 0; d < nd; ++d)
         for (unsigned int j = 0; j < zp; ++j)
           {
-            const unsigned int        k = d * zp + j;
-            const auto               &pc = contacts[d][j];
+            const unsigned int       k  = d * zp + j;
+            const auto              &pc = contacts[d][j];
             postprocess::PinForceRow p;
             p.disc = d;
             p.pin  = j;
@@ -360,7 +363,7 @@ namespace cycloid
             const dealii::Point<2> c  = geo.pin_centre(j);
             const double           a0 = std::atan2(pc.contact_point[1] - c[1],
                                          pc.contact_point[0] - c[0]);
-            const auto angle = [&](const SlaveNode<dim> &s) {
+            const auto             angle = [&](const SlaveNode<dim> &s) {
               return std::remainder(std::atan2(s.position[1] - c[1],
                                                s.position[0] - c[0]) -
                                       a0,
@@ -380,8 +383,9 @@ namespace cycloid
                     {
                       const double a = angle(s);
                       if (a > hi + 1e-12 || a < lo - 1e-12)
-                        spacing = std::min(
-                          spacing, std::min(std::abs(a - hi), std::abs(a - lo)));
+                        spacing = std::min(spacing,
+                                           std::min(std::abs(a - hi),
+                                                    std::abs(a - lo)));
                     }
                 if (spacing > 1e200)
                   spacing = 0;
@@ -415,7 +419,8 @@ namespace cycloid
       std::vector<std::pair<double, std::string>> &records)
     {
       dealii::TimerOutput::Scope t(timer, "output results");
-      const std::string name = "solution-" + dealii::Utilities::int_to_string(step, 4);
+      const std::string          name =
+        "solution-" + dealii::Utilities::int_to_string(step, 4);
       contact->write_vtu(prm.run.output_directory, name);
       if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
         {

@@ -363,7 +363,7 @@ namespace cycloid
                                      dealii::TrilinosWrappers::MPI::Vector &u)
     {
       AssertThrow(k < rhs_sets.size(), dealii::ExcInternalError());
-      const auto &rhs = rhs_sets[k];
+      const auto                           &rhs = rhs_sets[k];
       dealii::TrilinosWrappers::MPI::Vector x(locally_owned, comm);
       unsigned int                          iterations = 0;
       if (solver == Solver::direct)
@@ -395,15 +395,14 @@ namespace cycloid
               data.set_parameters(parameters, unused, system_matrix);
               null_space = rigid_body_modes(solver == Solver::cg_amg);
               parameters.set("null space: type", "pre-computed");
-              parameters.set("null space: dimension",
-                             null_space->NumVectors());
+              parameters.set("null space: dimension", null_space->NumVectors());
               parameters.set("null space: vectors", null_space->Values());
               amg.initialize(system_matrix, parameters);
               ready = Ready::amg;
             }
-          dealii::SolverControl control(
-            std::max<unsigned int>(1000, rhs.size() / 10),
-            tolerance * rhs.l2_norm());
+          dealii::SolverControl control(std::max<unsigned int>(1000,
+                                                               rhs.size() / 10),
+                                        tolerance * rhs.l2_norm());
           dealii::SolverCG<dealii::TrilinosWrappers::MPI::Vector> cg(control);
           try
             {

@@ -797,7 +797,7 @@ namespace cycloid
           const double period = geo.mesh_period();
           const double k      = std::floor(psi / period + 1e-9);
           psi_mesh            = psi - k * period;
-          k_pitch = static_cast<unsigned int>(
+          k_pitch             = static_cast<unsigned int>(
             ((static_cast<long>(k) % static_cast<long>(g.n_pins)) + g.n_pins) %
             g.n_pins);
         }
@@ -816,8 +816,8 @@ namespace cycloid
           const double c = std::cos(angle), s = std::sin(angle);
           for (std::size_t v = 0; v < raw.coordinates.size() / 3; ++v)
             {
-              const double x = raw.coordinates[3 * v],
-                           y = raw.coordinates[3 * v + 1];
+              const double x             = raw.coordinates[3 * v],
+                           y             = raw.coordinates[3 * v + 1];
               raw.coordinates[3 * v]     = c * x - s * y;
               raw.coordinates[3 * v + 1] = s * x + c * y;
             }

@@ -133,11 +133,11 @@ namespace cycloid
       {
         torques = dealii::Utilities::string_to_double(
           dealii::Utilities::split_string_list(prm.get("Torque")));
-        crank_angle_deg = prm.get_double("Crank angle");
+        crank_angle_deg  = prm.get_double("Crank angle");
         rotation_control = prm.get("Control") == "rotation";
         rotations_deg    = dealii::Utilities::string_to_double(
           dealii::Utilities::split_string_list(prm.get("Rotation")));
-        n_phases        = prm.get_integer("Number of phases");
+        n_phases = prm.get_integer("Number of phases");
       }
       prm.leave_subsection();
       AssertThrow(!torques.empty(),

@@ -339,10 +339,10 @@ namespace cycloid
       double
       reaction(const dealii::TrilinosWrappers::MPI::Vector &f) const;
 
-      const MPI_Comm                                     comm;
-      const ContactSettings                              settings;
-      const std::map<dealii::types::material_id,
-                     parameters::ElasticMaterial>        materials;
+      const MPI_Comm        comm;
+      const ContactSettings settings;
+      const std::map<dealii::types::material_id, parameters::ElasticMaterial>
+                                                         materials;
       std::unique_ptr<elasticity::LinearElasticity<dim>> problem;
 
       std::set<dealii::types::material_id> slave_bodies;
@@ -356,12 +356,12 @@ namespace cycloid
       std::vector<std::vector<
         std::pair<typename dealii::DoFHandler<dim>::active_cell_iterator,
                   unsigned int>>>
-                                                   master_faces;
+        master_faces;
       /** Per master face: centre angle, half angular width, z range. */
-      std::vector<std::vector<std::array<double, 4>>> master_boxes;
-      std::vector<SlaveNode<dim>>                  slaves;
-      std::vector<TiedNode<dim>>                   ties;
-      std::vector<dealii::types::global_dof_index> fixed;
+      std::vector<std::vector<std::array<double, 4>>>   master_boxes;
+      std::vector<SlaveNode<dim>>                       slaves;
+      std::vector<TiedNode<dim>>                        ties;
+      std::vector<dealii::types::global_dof_index>      fixed;
       std::map<dealii::types::global_dof_index, double> load;
       std::set<unsigned int>                            active;
 

@@ -73,7 +73,7 @@ namespace cycloid
       /** Number of active nodes. */
       unsigned int n_active = 0;
       /** Smallest slave-node spacing in the contact zone [mm]. */
-      double h_contact = 0;
+      double        h_contact  = 0;
       unsigned long n_dofs     = 0;
       unsigned int  iterations = 0;
       double        wall_s     = 0;

@@ -42,9 +42,8 @@ namespace cycloid
 
       /** Add the materials of the pins (and housing) to @p materials. */
       virtual void
-      add_materials(
-        std::map<dealii::types::material_id, parameters::ElasticMaterial>
-          &materials) const = 0;
+      add_materials(std::map<dealii::types::material_id,
+                             parameters::ElasticMaterial> &materials) const = 0;
 
       /** Do the pins deform (deformable master cylinders)? */
       virtual bool

@@ -99,9 +99,8 @@ namespace cycloid
        * solution.pvd (the record lists every state written by this
        * object and @p previous). */
       void
-      output_results(
-        const unsigned int                                  step,
-        std::vector<std::pair<double, std::string>> &records);
+      output_results(const unsigned int                           step,
+                     std::vector<std::pair<double, std::string>> &records);
 
     private:
       void
@@ -122,16 +121,16 @@ namespace cycloid
       double
       width_scale() const;
 
-      const parameters::AllParameters            prm;
-      const MPI_Comm                             comm;
-      const double                               psi;
-      const geometry::CycloidGeometry            geo;
-      dealii::ConditionalOStream                 pcout;
-      mutable dealii::TimerOutput                timer;
+      const parameters::AllParameters              prm;
+      const MPI_Comm                               comm;
+      const double                                 psi;
+      const geometry::CycloidGeometry              geo;
+      dealii::ConditionalOStream                   pcout;
+      mutable dealii::TimerOutput                  timer;
       dealii::parallel::shared::Triangulation<dim> tria;
-      std::unique_ptr<PinModel<dim>>             pin_model;
-      std::unique_ptr<ContactProblem<dim>>       contact;
-      bool                                       warm = false;
+      std::unique_ptr<PinModel<dim>>               pin_model;
+      std::unique_ptr<ContactProblem<dim>>         contact;
+      bool                                         warm = false;
     };
   } // namespace contact
 } // namespace cycloid

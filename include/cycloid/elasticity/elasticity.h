@@ -251,12 +251,12 @@ namespace cycloid
       const std::map<dealii::types::material_id, parameters::ElasticMaterial>
         materials;
 
-      std::vector<dealii::types::global_dof_index> extra_relevant;
-      dealii::IndexSet                             locally_owned;
-      dealii::IndexSet                             locally_relevant;
-      dealii::AffineConstraints<double>               hanging_all;
-      std::vector<dealii::AffineConstraints<double>>  constraint_sets;
-      dealii::TrilinosWrappers::SparseMatrix          system_matrix;
+      std::vector<dealii::types::global_dof_index>       extra_relevant;
+      dealii::IndexSet                                   locally_owned;
+      dealii::IndexSet                                   locally_relevant;
+      dealii::AffineConstraints<double>                  hanging_all;
+      std::vector<dealii::AffineConstraints<double>>     constraint_sets;
+      dealii::TrilinosWrappers::SparseMatrix             system_matrix;
       std::vector<dealii::TrilinosWrappers::MPI::Vector> rhs_sets;
       dealii::TrilinosWrappers::MPI::Vector locally_relevant_solution;
 
