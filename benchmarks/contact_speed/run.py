@@ -82,20 +82,19 @@ THREE_D = [
     ("c1 ax1 cr0", c3()),
     ("c1 ax1 cr1", c3(contact_refinements=1)),
     ("c1 ax1 cr2", c3(contact_refinements=2)),
-    ("c1 ax2 cr1", c3(axial_layers_per_disc=2, contact_refinements=1)),
-    ("c0.5 ax1 cr1", c3(contact_element_size=0.5, contact_refinements=1)),
+    ("c0.5 ax1 cr2", c3(contact_element_size=0.5, contact_refinements=2)),
     ("c0.5 ax2 cr2", c3(contact_element_size=0.5, axial_layers_per_disc=2, contact_refinements=2)),
+    ("c0.5 ax1 cr3", c3(contact_element_size=0.5, contact_refinements=3)),
 ]
 THREE_D_QUICK = ["c1 ax1 cr0", "c1 ax1 cr1"]
-# 3D one disc (Pin support = axis) and 2D one disc on the same in-plane mesh.
+# 3D one disc (Pin support = axis) and 2D one disc on the same in-plane mesh
+# ("2D <label>" pairs with "3D <label with axN>").
 ONE_DISC = [
-    ("2D c1 cr1", 2, c3(contact_refinements=1)),
-    ("3D c1 ax1 cr1", 3, c3(contact_refinements=1)),
-    ("3D c1 ax2 cr1", 3, c3(axial_layers_per_disc=2, contact_refinements=1)),
-    ("2D c1 cr2", 2, c3(contact_refinements=2)),
-    ("3D c1 ax1 cr2", 3, c3(contact_refinements=2)),
+    ("2D c0.5 cr2", 2, c3(contact_element_size=0.5, contact_refinements=2)),
+    ("3D c0.5 ax1 cr2", 3, c3(contact_element_size=0.5, contact_refinements=2)),
+    ("3D c0.5 ax2 cr2", 3, c3(contact_element_size=0.5, axial_layers_per_disc=2, contact_refinements=2)),
 ]
-ONE_DISC_QUICK = ["2D c1 cr1", "3D c1 ax1 cr1"]
+ONE_DISC_QUICK = ["2D c0.5 cr2", "3D c0.5 ax1 cr2"]
 
 
 def prm_text(out, dim, discs, support, torque, mesh, modified):
@@ -329,7 +328,7 @@ def analyse(rows2d, rows3d):
                    lambda r: 0)
     by = {r["case"]: r for r in rows3d if r["part"] == "3d1" and has_k(r)}
     for l3 in by:
-        l2 = "2D c1 " + l3.split()[-1]
+        l2 = "2D " + " ".join(w for w in l3.split()[1:] if not w.startswith("ax"))
         if l3.startswith("3D") and l2 in by:
             notes.append(f"{l3} / {l2}: K_secant {by[l3]['K_secant_Nm_per_rad'] / by[l2]['K_secant_Nm_per_rad']:.4f}, "
                          f"K_tangent {by[l3]['K_tangent_Nm_per_rad'] / by[l2]['K_tangent_Nm_per_rad']:.4f}")
