@@ -117,6 +117,23 @@ def timer_section(log, name):
 
 
 def run_case(args, work, part, label, dim, discs, support, torque, mesh, modified):
+    """--repeat mpiruns of one case; the rows of the first, with the median
+    wall and CPU times of all (and every wall time in wall_runs_s)."""
+    runs = [run_once(args, work, part, label, dim, discs, support, torque, mesh, modified)
+            for _ in range(max(1, args.repeat))]
+    rows = runs[0]
+    walls = [r[0]["total_wall_s"] for r in runs]
+    cpus = [r[0]["cpu_s"] for r in runs]
+    for r in rows:
+        r["total_wall_s"] = sorted(walls)[len(walls) // 2]
+        r["cpu_s"] = sorted(cpus)[len(cpus) // 2]
+        r["wall_runs_s"] = ";".join(f"{w:.1f}" for w in walls)
+    if len(runs) > 1:
+        print(f"  {part:5s} {label:14s} wall times {r['wall_runs_s']} s: median {r['total_wall_s']:.1f} s", flush=True)
+    return rows
+
+
+def run_once(args, work, part, label, dim, discs, support, torque, mesh, modified):
     """One mpirun of the program; returns a list of rows (one per load state)."""
     tag = re.sub(r"[^A-Za-z0-9.]+", "_", f"{part}_{label}")
     out = os.path.join(work, tag)
@@ -221,7 +238,7 @@ def cheapest_within(rows, pct, key="total_wall_s", prefix=""):
 COLUMNS = ["part", "case", "dim", "discs", "contact_element_mm", "axial_layers", "contact_refinements",
            "adaptive_cycles", "degree", "torque_Nm", "state", "cells", "dofs", "K_secant_Nm_per_rad",
            "K_tangent_Nm_per_rad", "K_secant_elastic_Nm_per_rad", "max_pin_force_N", "pins_in_contact",
-           "active_set_iterations", "state_wall_s", "grid_s", "solve_s", "output_s", "total_wall_s", "cpu_s",
+           "active_set_iterations", "state_wall_s", "grid_s", "solve_s", "output_s", "total_wall_s", "wall_runs_s", "cpu_s",
            "load_avg_at_start", "reference_case", "err_K_secant_pct", "err_K_tangent_pct",
            "best_reference_case", "best_err_K_secant_pct", "best_err_K_tangent_pct", "status"]
 
@@ -339,7 +356,9 @@ def merge(old, new, order):
     """Rows of old whose (part, case) was not run again, plus new, in the order of the case lists."""
     fresh = {(r["part"], r["case"]) for r in new}
     rows = [r for r in old if (r["part"], r["case"]) not in fresh] + new
-    return sorted(rows, key=lambda r: (order.get((r["part"], r["case"]), 999), r["torque_Nm"]))
+    parts = ["seed", "mod", "3d", "3d1"]
+    return sorted(rows, key=lambda r: (parts.index(r["part"]) if r["part"] in parts else 9,
+                                       order.get((r["part"], r["case"]), 999), r["torque_Nm"]))
 
 
 def main():
@@ -352,6 +371,8 @@ def main():
     ap.add_argument("--cases", default=None, help="comma list of case labels to run (default: all of the parts)")
     ap.add_argument("--fresh", action="store_true",
                     help="start new CSV files instead of replacing the re-run cases in the existing ones")
+    ap.add_argument("--repeat", type=int, default=1,
+                    help="run every case this many times and report the median wall time (timing noise)")
     ap.add_argument("--timeout", type=float, default=1200., help="stop a run after this many seconds")
     ap.add_argument("--out", default=os.path.join(ROOT, "doc"), help="directory of the CSV and PNG files")
     ap.add_argument("--keep", default=None, help="keep prm, logs and outputs in this directory")

@@ -37,6 +37,24 @@ namespace cycloid
       {
         return std::hypot(x[0] - c[0], x[1] - c[1]);
       }
+
+      /** The cylinder nearest to @p x (in the xy plane) and the distance
+       * to its axis. */
+      template <int dim>
+      std::pair<unsigned int, double>
+      nearest_cylinder(const std::vector<MasterCylinder> &cylinders,
+                       const dealii::Point<dim>          &x)
+      {
+        unsigned int nearest = 0;
+        double       d       = std::numeric_limits<double>::max();
+        for (unsigned int j = 0; j < cylinders.size(); ++j)
+          if (planar_distance(x, cylinders[j].centre) < d)
+            {
+              d       = planar_distance(x, cylinders[j].centre);
+              nearest = j;
+            }
+        return {nearest, d};
+      }
     } // namespace
 
 
@@ -326,15 +344,8 @@ namespace cycloid
                   const dealii::Point<dim> x =
                     mapping.transform_unit_to_real_cell(cell,
                                                         unit_points[node]);
-                  unsigned int nearest = 0;
-                  double       d       = std::numeric_limits<double>::max();
-                  for (unsigned int j = 0; j < cylinders.size(); ++j)
-                    if (planar_distance(x, cylinders[j].centre) < d)
-                      {
-                        d       = planar_distance(x, cylinders[j].centre);
-                        nearest = j;
-                      }
-                  const double gap = d - cylinders[nearest].radius;
+                  const auto [nearest, d] = nearest_cylinder(cylinders, x);
+                  const double gap        = d - cylinders[nearest].radius;
                   if (gap > settings.search_distance)
                     {
                       index_of[indices[i]] =
@@ -465,7 +476,6 @@ namespace cycloid
                   std::map<
                     unsigned int,
                     std::tuple<
-                      double,
                       dealii::Tensor<1, 2>,
                       std::array<std::vector<dealii::types::global_dof_index>,
                                  dim>,
@@ -505,13 +515,11 @@ namespace cycloid
                                   "quadrature point."));
                             }
                           it = at.emplace(s.cylinder,
-                                          std::make_tuple(
-                                            d - m.radius, normal, mdofs, mw))
+                                          std::make_tuple(normal, mdofs, mw))
                                  .first;
                         }
-                      const auto &[g, normal, mdofs, mw] = it->second;
-                      (void)g;
-                      double psi = 0;
+                      const auto &[normal, mdofs, mw] = it->second;
+                      double psi                      = 0;
                       for (unsigned int b = 0; b < n; ++b)
                         psi +=
                           D(a) * Minv(a, b) * fe_face.shape_value(local[b], q);
@@ -587,15 +595,8 @@ namespace cycloid
                   const dealii::Point<dim> x =
                     mapping.transform_unit_to_real_cell(cell,
                                                         unit_points[node]);
-                  unsigned int nearest = 0;
-                  double       d       = std::numeric_limits<double>::max();
-                  for (unsigned int j = 0; j < cylinders.size(); ++j)
-                    if (planar_distance(x, cylinders[j].centre) < d)
-                      {
-                        d       = planar_distance(x, cylinders[j].centre);
-                        nearest = j;
-                      }
-                  dealii::Point<dim> P = x;
+                  const auto [nearest, d] = nearest_cylinder(cylinders, x);
+                  dealii::Point<dim> P    = x;
                   for (unsigned int c = 0; c < 2; ++c)
                     P[c] = cylinders[nearest].centre[c] +
                            cylinders[nearest].radius *

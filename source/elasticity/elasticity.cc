@@ -235,11 +235,13 @@ namespace cycloid
 
 
     template <int dim>
-    dealii::TrilinosWrappers::MPI::Vector
-    LinearElasticity<dim>::internal_forces(
-      const dealii::TrilinosWrappers::MPI::Vector &u) const
+    void
+    LinearElasticity<dim>::assemble_internal_forces(
+      const dealii::TrilinosWrappers::MPI::Vector &u,
+      dealii::TrilinosWrappers::MPI::Vector       &f,
+      const dealii::AffineConstraints<double>     *condense,
+      dealii::TrilinosWrappers::MPI::Vector       *condensed) const
     {
-      dealii::TrilinosWrappers::MPI::Vector        f(locally_owned, comm);
       const dealii::QGauss<dim>                    quadrature(fe.degree + 1);
       dealii::FEValues<dim>                        fe_values(*map,
                                       fe,
@@ -274,8 +276,23 @@ namespace cycloid
             }
           cell->get_dof_indices(indices);
           f.add(indices, cell_f);
+          if (condense)
+            condense->distribute_local_to_global(cell_f, indices, *condensed);
         }
       f.compress(dealii::VectorOperation::add);
+      if (condensed)
+        condensed->compress(dealii::VectorOperation::add);
+    }
+
+
+
+    template <int dim>
+    dealii::TrilinosWrappers::MPI::Vector
+    LinearElasticity<dim>::internal_forces(
+      const dealii::TrilinosWrappers::MPI::Vector &u) const
+    {
+      dealii::TrilinosWrappers::MPI::Vector f(locally_owned, comm);
+      assemble_internal_forces(u, f, nullptr, nullptr);
       dealii::TrilinosWrappers::MPI::Vector ghosted(locally_owned,
                                                     locally_relevant,
                                                     comm);
@@ -436,44 +453,7 @@ namespace cycloid
     {
       dealii::TrilinosWrappers::MPI::Vector r(locally_owned, comm),
         f(locally_owned, comm);
-      const dealii::QGauss<dim>                    quadrature(fe.degree + 1);
-      dealii::FEValues<dim>                        fe_values(*map,
-                                      fe,
-                                      quadrature,
-                                      dealii::update_gradients |
-                                        dealii::update_JxW_values);
-      const unsigned int                           n = fe.n_dofs_per_cell();
-      dealii::Vector<double>                       cell_f(n);
-      std::vector<dealii::types::global_dof_index> indices(n);
-      const dealii::FEValuesExtractors::Vector     disp(0);
-      std::vector<dealii::SymmetricTensor<2, dim>> strain(quadrature.size());
-      for (const auto &cell : dofs.active_cell_iterators())
-        {
-          if (!cell->is_locally_owned())
-            continue;
-          const auto  &m = materials.at(cell->material_id());
-          const double E = m.youngs_modulus, nu = m.poissons_ratio;
-          const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-          const double mu     = E / (2 * (1 + nu));
-          fe_values.reinit(cell);
-          fe_values[disp].get_function_symmetric_gradients(u, strain);
-          cell_f = 0;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              const dealii::SymmetricTensor<2, dim> sigma =
-                lambda * dealii::trace(strain[q]) *
-                  dealii::unit_symmetric_tensor<dim>() +
-                2 * mu * strain[q];
-              for (unsigned int i = 0; i < n; ++i)
-                cell_f(i) += sigma * fe_values[disp].symmetric_gradient(i, q) *
-                             fe_values.JxW(q);
-            }
-          cell->get_dof_indices(indices);
-          f.add(indices, cell_f);
-          constraint_sets.at(k).distribute_local_to_global(cell_f, indices, r);
-        }
-      f.compress(dealii::VectorOperation::add);
-      r.compress(dealii::VectorOperation::add);
+      assemble_internal_forces(u, f, &constraint_sets.at(k), &r);
       return {r.l2_norm(), f.l2_norm()};
     }
 

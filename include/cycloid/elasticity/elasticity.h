@@ -243,6 +243,16 @@ namespace cycloid
       rigid_body_modes(const bool with_rotations) const;
 
     private:
+      /** f += f_int(u) over the owned cells; with @p condense, also
+       * @p condensed += C^T f_int(u) (constrained entries moved onto their
+       * masters). */
+      void
+      assemble_internal_forces(
+        const dealii::TrilinosWrappers::MPI::Vector &u,
+        dealii::TrilinosWrappers::MPI::Vector       &f,
+        const dealii::AffineConstraints<double>     *condense,
+        dealii::TrilinosWrappers::MPI::Vector       *condensed) const;
+
       const dealii::parallel::TriangulationBase<dim> &triangulation;
       const MPI_Comm                                  comm;
       const dealii::FESystem<dim>                     fe;
