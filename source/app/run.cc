@@ -34,6 +34,9 @@ namespace cycloid
           case Mode::phase_sweep:
             run_phase_sweep(prm, comm);
             return;
+          case Mode::transient:
+            run_transient(prm, comm);
+            return;
           case Mode::mesh:
             if (prm.scene.dimension == 2)
               run_mesh<2>(prm, comm);
@@ -46,7 +49,7 @@ namespace cycloid
               dealii::ExcMessage(
                 "Run = " + prm.run.mode_name +
                 " is not available in this version: Run = "
-                "analytic, mesh, quasi-static and phase-sweep are implemented so far (the rest is tracked in "
+                "analytic, mesh, quasi-static, phase-sweep and transient are implemented (the rest is tracked in "
                 "the project's issues)."));
         }
     }

@@ -5,10 +5,12 @@
 
 #include <cycloid/app/run.h>
 #include <cycloid/contact/quasi_static.h>
+#include <cycloid/dynamics/transient.h>
 #include <cycloid/postprocess/result_writer.h>
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -227,6 +229,35 @@ namespace cycloid
         phase_sweep<2>(prm, comm);
       else
         phase_sweep<3>(prm, comm);
+    }
+    void
+    run_transient(const parameters::AllParameters &prm, const MPI_Comm comm)
+    {
+      const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      if (root)
+        std::cout << "cycloid-contact: transient FE contact, "
+                  << scene_description(prm) << ", from crank angle "
+                  << prm.loading.crank_angle_deg << " deg" << std::endl;
+      if (root)
+        {
+          std::error_code ec;
+          std::filesystem::create_directories(prm.run.output_directory, ec);
+          AssertThrow(!ec,
+                      dealii::ExcMessage("Output directory '" +
+                                         prm.run.output_directory +
+                                         "' cannot be created: " +
+                                         ec.message()));
+        }
+      if (prm.scene.dimension == 2)
+        {
+          dynamics::Transient<2> solver(prm, comm);
+          solver.run();
+        }
+      else
+        {
+          dynamics::Transient<3> solver(prm, comm);
+          solver.run();
+        }
     }
   } // namespace app
 } // namespace cycloid

@@ -341,9 +341,11 @@ namespace cycloid
                         slaves[known->second].weight += w;
                       continue;
                     }
-                  const dealii::Point<dim> x =
+                  dealii::Point<dim> x =
                     mapping.transform_unit_to_real_cell(cell,
                                                         unit_points[node]);
+                  if (placement)
+                    x = placement(cell->material_id(), x);
                   const auto [nearest, d] = nearest_cylinder(cylinders, x);
                   const double gap        = d - cylinders[nearest].radius;
                   if (gap > settings.search_distance)
@@ -471,7 +473,9 @@ namespace cycloid
               Minv.invert(M);
               for (const unsigned int q : fe_face.quadrature_point_indices())
                 {
-                  const dealii::Point<dim> x = fe_face.quadrature_point(q);
+                  dealii::Point<dim> x = fe_face.quadrature_point(q);
+                  if (placement)
+                    x = placement(cell->material_id(), x);
                   // Per cylinder met on this face: gap, normal, master weights.
                   std::map<
                     unsigned int,
@@ -634,6 +638,45 @@ namespace cycloid
       const std::map<dealii::types::global_dof_index, double> &g)
     {
       load = g;
+    }
+
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::set_placement(
+      const std::function<dealii::Point<dim>(dealii::types::material_id,
+                                             const dealii::Point<dim> &)>
+        &p)
+    {
+      placement = p;
+    }
+
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::update_geometry()
+    {
+      std::set<dealii::types::global_dof_index> was_active;
+      for (const unsigned int i : active)
+        was_active.insert(slaves[i].dofs[0]);
+      find_slave_nodes();
+      std::vector<dealii::types::global_dof_index> extra;
+      for (const auto &s : slaves)
+        extra.insert(extra.end(), s.master_dofs.begin(), s.master_dofs.end());
+      for (const auto &t : ties)
+        for (unsigned int c = 0; c < dim; ++c)
+          extra.insert(extra.end(), t.masters[c].begin(), t.masters[c].end());
+      problem->set_extra_relevant_dofs(extra);
+      active.clear();
+      for (unsigned int i = 0; i < slaves.size(); ++i)
+        if (!slaves[i].hanging && was_active.count(slaves[i].dofs[0]))
+          active.insert(i);
+      reactions.assign(slaves.size(), dealii::Tensor<1, dim>());
+      gaps.resize(slaves.size());
+      for (unsigned int i = 0; i < slaves.size(); ++i)
+        gaps[i] = slaves[i].gap0;
     }
 
 
@@ -815,8 +858,8 @@ namespace cycloid
             0, settings.solver, settings.solver_tolerance, u0);
           state.linear_iterations += problem->solve_set(
             1, settings.solver, settings.solver_tolerance, u1);
-          f0               = problem->internal_forces(u0);
-          f1               = problem->internal_forces(u1);
+          f0               = problem->effective_forces(u0, true);
+          f1               = problem->effective_forces(u1, false);
           const double q0  = reaction(f0);
           const double q1  = reaction(f1);
           state.tangent    = q1;

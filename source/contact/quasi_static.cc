@@ -35,10 +35,12 @@ namespace cycloid
     template <int dim>
     QuasiStatic<dim>::QuasiStatic(const parameters::AllParameters &parameters,
                                   const double                     psi,
-                                  const MPI_Comm                   comm)
+                                  const MPI_Comm                   comm,
+                                  const double                     sweep)
       : prm(parameters)
       , comm(comm)
       , psi(psi)
+      , sweep(sweep)
       , geo(parameters.geometry)
       , pcout(std::cout, dealii::Utilities::MPI::this_mpi_process(comm) == 0)
       , timer(comm,
@@ -107,7 +109,7 @@ namespace cycloid
     QuasiStatic<dim>::make_grid()
     {
       dealii::TimerOutput::Scope t(timer, "make grid");
-      mesh::create_stage_mesh(prm, psi, tria);
+      mesh::create_stage_mesh(prm, psi, tria, sweep);
       pcout << "  mesh: " << dim << "D, " << prm.scene.n_discs << " disc(s), "
             << tria.n_global_active_cells() << " cells" << std::endl;
     }

@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -141,7 +142,8 @@ namespace cycloid
       dealii::FEValues<dim>         fe_values(*map,
                                       fe,
                                       quadrature,
-                                      dealii::update_gradients |
+                                      dealii::update_values |
+                                        dealii::update_gradients |
                                         dealii::update_JxW_values);
       dealii::FEFaceValues<dim>     fe_face_values(
         *map,
@@ -157,6 +159,18 @@ namespace cycloid
       std::vector<dealii::SymmetricTensor<2, dim>> eps(dofs_per_cell);
       std::vector<double>                          div(dofs_per_cell);
       dealii::Vector<double>                       t(dim);
+      // Effective operator s_K K + s_M M and history load M w_M + K w_K.
+      const bool has_mass = dynamic.mass != 0.;
+      const bool has_mass_load =
+        dynamic.mass_load.size() > 0 && dynamic.mass_load.l2_norm() > 0;
+      const bool has_stiffness_load = dynamic.stiffness_load.size() > 0 &&
+                                      dynamic.stiffness_load.l2_norm() > 0;
+      dealii::FullMatrix<double> cell_mass(dofs_per_cell, dofs_per_cell);
+      dealii::Vector<double>     cell_load(dofs_per_cell),
+        cell_w(dofs_per_cell);
+      std::vector<unsigned int> comp_of(dofs_per_cell);
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        comp_of[i] = fe.system_to_component_index(i).first;
 
       for (const auto &cell : dofs.active_cell_iterators())
         {
@@ -191,6 +205,37 @@ namespace cycloid
             for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
               cell_matrix(i, j) = cell_matrix(j, i);
 
+          cell->get_dof_indices(indices);
+          cell_load = 0;
+          if (has_mass || has_mass_load)
+            {
+              const double rho = density(cell->material_id());
+              cell_mass        = 0;
+              for (const unsigned int q : fe_values.quadrature_point_indices())
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                    if (comp_of[i] == comp_of[j])
+                      cell_mass(i, j) += rho * fe_values.shape_value(i, q) *
+                                         fe_values.shape_value(j, q) *
+                                         fe_values.JxW(q);
+              if (has_mass_load)
+                {
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    cell_w(i) = dynamic.mass_load[indices[i]];
+                  cell_mass.vmult_add(cell_load, cell_w);
+                }
+            }
+          if (has_stiffness_load)
+            {
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                cell_w(i) = dynamic.stiffness_load[indices[i]];
+              cell_matrix.vmult_add(cell_load, cell_w);
+            }
+          if (dynamic.stiffness != 1.)
+            cell_matrix *= dynamic.stiffness;
+          if (has_mass)
+            cell_matrix.add(dynamic.mass, cell_mass);
+
           for (const unsigned int f : cell->face_indices())
             if (cell->face(f)->at_boundary())
               {
@@ -212,9 +257,9 @@ namespace cycloid
                       }
                   }
               }
-          cell->get_dof_indices(indices);
           // Sets k > 0 share the matrix; their inhomogeneities enter the
-          // right-hand side through the local matrix.
+          // right-hand side through the local matrix. The history load
+          // belongs to the first set only (superposition u = u_0 + beta u_1).
           for (unsigned int k = 1; k < constraint_sets.size(); ++k)
             {
               cell_rhs_k = cell_rhs;
@@ -223,6 +268,7 @@ namespace cycloid
                                                             rhs_sets[k],
                                                             cell_matrix);
             }
+          cell_rhs += cell_load;
           constraint_sets[0].distribute_local_to_global(
             cell_matrix, cell_rhs, indices, system_matrix, rhs_sets[0]);
         }
@@ -235,24 +281,66 @@ namespace cycloid
 
 
     template <int dim>
+    double
+    LinearElasticity<dim>::density(const dealii::types::material_id m) const
+    {
+      const auto it = materials.find(m);
+      AssertThrow(it != materials.end(),
+                  dealii::ExcMessage("elasticity: no material for body " +
+                                     std::to_string(m)));
+      // kg/m^3 -> t/mm^3 (N = t mm / s^2).
+      return it->second.density * 1e-12;
+    }
+
+
+
+    template <int dim>
+    void
+    LinearElasticity<dim>::set_dynamic_terms(const DynamicTerms &terms)
+    {
+      AssertThrow(terms.stiffness >= 0 && terms.mass >= 0 &&
+                    terms.stiffness + terms.mass > 0,
+                  dealii::ExcMessage(
+                    "elasticity: the effective operator needs non-negative "
+                    "factors of K and M, not both zero."));
+      dynamic = terms;
+      ready   = Ready::none;
+    }
+
+
+
+    template <int dim>
     void
     LinearElasticity<dim>::assemble_internal_forces(
       const dealii::TrilinosWrappers::MPI::Vector &u,
       dealii::TrilinosWrappers::MPI::Vector       &f,
       const dealii::AffineConstraints<double>     *condense,
-      dealii::TrilinosWrappers::MPI::Vector       *condensed) const
+      dealii::TrilinosWrappers::MPI::Vector       *condensed,
+      const bool                                   effective,
+      const bool                                   with_load) const
     {
       const dealii::QGauss<dim>                    quadrature(fe.degree + 1);
       dealii::FEValues<dim>                        fe_values(*map,
                                       fe,
                                       quadrature,
-                                      dealii::update_gradients |
+                                      dealii::update_values |
+                                        dealii::update_gradients |
                                         dealii::update_JxW_values);
       const unsigned int                           n = fe.n_dofs_per_cell();
       dealii::Vector<double>                       cell_f(n);
       std::vector<dealii::types::global_dof_index> indices(n);
       const dealii::FEValuesExtractors::Vector     disp(0);
-      std::vector<dealii::SymmetricTensor<2, dim>> strain(quadrature.size());
+      std::vector<dealii::SymmetricTensor<2, dim>> strain(quadrature.size()),
+        strain_w(quadrature.size());
+      std::vector<dealii::Tensor<1, dim>> value(quadrature.size()),
+        value_w(quadrature.size());
+      // f = s_K K u + s_M M u - (M w_M + K w_K), or K u.
+      const double s_K    = effective ? dynamic.stiffness : 1.;
+      const double s_M    = effective ? dynamic.mass : 0.;
+      const bool   load_M = effective && with_load &&
+                          dynamic.mass_load.size() > 0;
+      const bool load_K = effective && with_load &&
+                          dynamic.stiffness_load.size() > 0;
       for (const auto &cell : dofs.active_cell_iterators())
         {
           if (!cell->is_locally_owned())
@@ -261,8 +349,31 @@ namespace cycloid
           const double E = m.youngs_modulus, nu = m.poissons_ratio;
           const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
           const double mu     = E / (2 * (1 + nu));
+          const double rho    = density(cell->material_id());
           fe_values.reinit(cell);
           fe_values[disp].get_function_symmetric_gradients(u, strain);
+          if (load_K)
+            {
+              fe_values[disp].get_function_symmetric_gradients(
+                dynamic.stiffness_load, strain_w);
+              for (unsigned int q = 0; q < strain.size(); ++q)
+                strain[q] = s_K * strain[q] - strain_w[q];
+            }
+          else if (s_K != 1.)
+            for (auto &e : strain)
+              e *= s_K;
+          const bool inertia = s_M != 0. || load_M;
+          if (inertia)
+            {
+              fe_values[disp].get_function_values(u, value);
+              if (load_M)
+                fe_values[disp].get_function_values(dynamic.mass_load,
+                                                    value_w);
+              for (unsigned int q = 0; q < value.size(); ++q)
+                value[q] = rho * (s_M * value[q] -
+                                  (load_M ? value_w[q] :
+                                            dealii::Tensor<1, dim>()));
+            }
           cell_f = 0;
           for (const unsigned int q : fe_values.quadrature_point_indices())
             {
@@ -271,8 +382,13 @@ namespace cycloid
                   dealii::unit_symmetric_tensor<dim>() +
                 2 * mu * strain[q];
               for (unsigned int i = 0; i < n; ++i)
-                cell_f(i) += sigma * fe_values[disp].symmetric_gradient(i, q) *
-                             fe_values.JxW(q);
+                {
+                  double v =
+                    sigma * fe_values[disp].symmetric_gradient(i, q);
+                  if (inertia)
+                    v += value[q] * fe_values[disp].value(i, q);
+                  cell_f(i) += v * fe_values.JxW(q);
+                }
             }
           cell->get_dof_indices(indices);
           f.add(indices, cell_f);
@@ -282,6 +398,110 @@ namespace cycloid
       f.compress(dealii::VectorOperation::add);
       if (condensed)
         condensed->compress(dealii::VectorOperation::add);
+    }
+
+
+
+    template <int dim>
+    dealii::TrilinosWrappers::MPI::Vector
+    LinearElasticity<dim>::effective_forces(
+      const dealii::TrilinosWrappers::MPI::Vector &u,
+      const bool                                   with_load) const
+    {
+      dealii::TrilinosWrappers::MPI::Vector f(locally_owned, comm);
+      assemble_internal_forces(u, f, nullptr, nullptr, true, with_load);
+      dealii::TrilinosWrappers::MPI::Vector ghosted(locally_owned,
+                                                    locally_relevant,
+                                                    comm);
+      ghosted = f;
+      return ghosted;
+    }
+
+
+
+    template <int dim>
+    std::pair<double, double>
+    LinearElasticity<dim>::energies(
+      const dealii::TrilinosWrappers::MPI::Vector &u,
+      const dealii::TrilinosWrappers::MPI::Vector &v) const
+    {
+      const dealii::QGauss<dim>                    quadrature(fe.degree + 1);
+      dealii::FEValues<dim>                        fe_values(*map,
+                                      fe,
+                                      quadrature,
+                                      dealii::update_values |
+                                        dealii::update_gradients |
+                                        dealii::update_JxW_values);
+      const dealii::FEValuesExtractors::Vector     disp(0);
+      std::vector<dealii::SymmetricTensor<2, dim>> strain(quadrature.size());
+      std::vector<dealii::Tensor<1, dim>>          velocity(quadrature.size());
+      double                                       elastic = 0, kinetic = 0;
+      for (const auto &cell : dofs.active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          const auto  &m = materials.at(cell->material_id());
+          const double E = m.youngs_modulus, nu = m.poissons_ratio;
+          const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+          const double mu     = E / (2 * (1 + nu));
+          const double rho    = density(cell->material_id());
+          fe_values.reinit(cell);
+          fe_values[disp].get_function_symmetric_gradients(u, strain);
+          fe_values[disp].get_function_values(v, velocity);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              const double tr = dealii::trace(strain[q]);
+              elastic += 0.5 *
+                         (lambda * tr * tr + 2 * mu * (strain[q] * strain[q])) *
+                         fe_values.JxW(q);
+              kinetic +=
+                0.5 * rho * (velocity[q] * velocity[q]) * fe_values.JxW(q);
+            }
+        }
+      return {dealii::Utilities::MPI::sum(elastic, comm),
+              dealii::Utilities::MPI::sum(kinetic, comm)};
+    }
+
+
+
+    template <int dim>
+    dealii::TrilinosWrappers::MPI::Vector
+    LinearElasticity<dim>::mass_times(
+      const dealii::TrilinosWrappers::MPI::Vector &x) const
+    {
+      const dealii::QGauss<dim>                    quadrature(fe.degree + 1);
+      dealii::FEValues<dim>                        fe_values(*map,
+                                      fe,
+                                      quadrature,
+                                      dealii::update_values |
+                                        dealii::update_JxW_values);
+      const unsigned int                           n = fe.n_dofs_per_cell();
+      const dealii::FEValuesExtractors::Vector     disp(0);
+      std::vector<dealii::Tensor<1, dim>>          value(quadrature.size());
+      dealii::Vector<double>                       cell_f(n);
+      std::vector<dealii::types::global_dof_index> indices(n);
+      dealii::TrilinosWrappers::MPI::Vector        f(locally_owned, comm);
+      for (const auto &cell : dofs.active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          const double rho = density(cell->material_id());
+          fe_values.reinit(cell);
+          fe_values[disp].get_function_values(x, value);
+          cell_f = 0;
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            for (unsigned int i = 0; i < n; ++i)
+              cell_f(i) += rho * (value[q] * fe_values[disp].value(i, q)) *
+                           fe_values.JxW(q);
+          cell->get_dof_indices(indices);
+          f.add(indices, cell_f);
+        }
+      f.compress(dealii::VectorOperation::add);
+      dealii::TrilinosWrappers::MPI::Vector ghosted(locally_owned,
+                                                    locally_relevant,
+                                                    comm);
+      ghosted = f;
+      return ghosted;
     }
 
 
@@ -453,7 +673,19 @@ namespace cycloid
     {
       dealii::TrilinosWrappers::MPI::Vector r(locally_owned, comm),
         f(locally_owned, comm);
-      assemble_internal_forces(u, f, &constraint_sets.at(k), &r);
+      assemble_internal_forces(
+        u, f, &constraint_sets.at(k), &r, true, k == 0);
+      // Reference: the forces of the operator alone (A u); with a history
+      // load, A u - b vanishes away from contacts and supports (a free
+      // flight), so it cannot be the reference.
+      const bool history =
+        dynamic.mass_load.size() > 0 || dynamic.stiffness_load.size() > 0;
+      if (history && k == 0)
+        {
+          dealii::TrilinosWrappers::MPI::Vector g(locally_owned, comm);
+          assemble_internal_forces(u, g, nullptr, nullptr, true, false);
+          return {r.l2_norm(), std::max(f.l2_norm(), g.l2_norm())};
+        }
       return {r.l2_norm(), f.l2_norm()};
     }
 

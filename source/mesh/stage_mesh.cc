@@ -230,7 +230,8 @@ namespace cycloid
       generate_with_gmsh(const parameters::AllParameters &prm,
                          const geometry::CycloidGeometry &geo_data,
                          const double                     psi,
-                         const std::string               &msh_file)
+                         const std::string               &msh_file,
+                         const double                     sweep)
       {
         namespace geo         = gmsh::model::geo;
         const auto        &g  = prm.geometry;
@@ -474,7 +475,8 @@ namespace cycloid
 
         // Size field.
         SizeField field(m);
-        field.points      = contact_points(geo_data, prm.scene.n_discs, psi);
+        field.points      =
+          contact_points_along(geo_data, prm.scene.n_discs, psi, sweep);
         field.ring_radius = geo_data.root_radius() - 2. * g.pin_radius;
         field.pin_radius  = g.pin_radius;
         field.pin_circle_radius = rp;
@@ -724,6 +726,33 @@ namespace cycloid
 
 
 
+    std::vector<dealii::Point<2>>
+    contact_points_along(const geometry::CycloidGeometry &geometry,
+                         const unsigned int               n_discs,
+                         const double                     psi,
+                         const double                     sweep)
+    {
+      if (sweep == 0.)
+        return contact_points(geometry, n_discs, psi);
+      const unsigned int n = static_cast<unsigned int>(
+        std::ceil(std::abs(sweep) / (geometry.mesh_period() / 20.)));
+      std::vector<dealii::Point<2>> points;
+      for (unsigned int k = 0; k <= n; ++k)
+        {
+          const double s = psi + sweep * k / n;
+          for (unsigned int d = 0; d < n_discs; ++d)
+            for (const auto &c : geometry.pin_contacts(d, s))
+              {
+                points.push_back(c.contact_point);
+                points.push_back(geometry.to_housing(
+                  d, psi, geometry.to_disc(d, s, c.contact_point)));
+              }
+        }
+      return points;
+    }
+
+
+
     std::pair<double, double>
     disc_axial_range(const parameters::AllParameters &prm, const unsigned int d)
     {
@@ -772,7 +801,8 @@ namespace cycloid
     void
     create_stage_mesh(const parameters::AllParameters &prm,
                       const double                     psi,
-                      dealii::Triangulation<dim>      &tria)
+                      dealii::Triangulation<dim>      &tria,
+                      const double                     sweep)
     {
       AssertThrow(tria.n_cells() == 0,
                   dealii::ExcMessage("need an empty mesh"));
@@ -808,7 +838,8 @@ namespace cycloid
                                  psi_mesh,
                                  prm.mesh.write_msh ?
                                    prm.run.output_directory + "/stage.msh" :
-                                   "");
+                                   "",
+                                 sweep);
       broadcast(raw, comm);
       if (k_pitch > 0)
         {
@@ -1072,7 +1103,7 @@ namespace cycloid
 
       if (prm.mesh.global_refinements > 0)
         tria.refine_global(prm.mesh.global_refinements);
-      refine_near_contacts(contact_points(geo, prm.scene.n_discs, psi),
+      refine_near_contacts(contact_points_along(geo, prm.scene.n_discs, psi, sweep),
                            prm.mesh.contact_refinement_radius,
                            prm.mesh.contact_refinements,
                            tria);
@@ -1183,11 +1214,13 @@ namespace cycloid
     template void
     create_stage_mesh<2>(const parameters::AllParameters &,
                          const double,
-                         dealii::Triangulation<2> &);
+                         dealii::Triangulation<2> &,
+                         const double);
     template void
     create_stage_mesh<3>(const parameters::AllParameters &,
                          const double,
-                         dealii::Triangulation<3> &);
+                         dealii::Triangulation<3> &,
+                         const double);
     template void
     attach_manifolds<2>(const parameters::AllParameters &,
                         const double,

@@ -284,6 +284,7 @@ namespace cycloid
       analytic::AnalyticParameters::declare_parameters(prm);
       mesh::MeshParameters::declare_parameters(prm);
       contact::ContactParameters::declare_parameters(prm);
+      dynamics::TransientParameters::declare_parameters(prm);
     }
 
 
@@ -299,6 +300,7 @@ namespace cycloid
       analytic.parse_parameters(prm);
       mesh.parse_parameters(prm);
       contact.parse_parameters(prm);
+      transient.parse_parameters(prm);
       AssertThrow(scene.pin_core_radius < geometry.pin_radius,
                   dealii::ExcMessage("Scene/Pin core radius must be smaller "
                                      "than Geometry/Pin radius."));

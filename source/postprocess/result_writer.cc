@@ -54,27 +54,41 @@ namespace cycloid
 
 
     void
+    write_stiffness_row(std::ostream &out, const StiffnessRow &s)
+    {
+      out << s.step << ',' << s.crank_deg << ',' << s.torque_Nm << ','
+          << s.rotation_rad << ',' << s.k_secant << ',' << s.k_tangent << ','
+          << s.pins_in_contact << ',' << s.iterations << ',' << s.dofs << ','
+          << s.wall_s << ',' << s.k_secant * rad_per_arcmin << ','
+          << s.k_tangent * rad_per_arcmin << ',' << s.takeup_rad << ','
+          << s.k_secant_elastic << ',' << s.reaction_torque_Nm << ','
+          << s.max_pin_force_N << '\n';
+    }
+
+
+
+    void
+    write_pin_force_row(std::ostream &out, const PinForceRow &p)
+    {
+      out << p.step << ',' << p.crank_deg << ',' << p.disc << ',' << p.pin
+          << ',' << p.fx_N << ',' << p.fy_N << ',' << p.fn_N << ','
+          << p.arm_mm << ',' << p.clearance_um << ',' << p.phase_deg << ','
+          << p.approach_um << ',' << p.pair_stiffness_N_per_mm << ','
+          << p.contact_x_mm << ',' << p.contact_y_mm << ','
+          << p.contact_halfwidth_um << ',' << p.hertz_halfwidth_um << '\n';
+    }
+
+
+
+    void
     ResultWriter::write(const StiffnessRow             &s,
                         const std::vector<PinForceRow> &pins)
     {
       if (!active)
         return;
-      stiffness << s.step << ',' << s.crank_deg << ',' << s.torque_Nm << ','
-                << s.rotation_rad << ',' << s.k_secant << ',' << s.k_tangent
-                << ',' << s.pins_in_contact << ',' << s.iterations << ','
-                << s.dofs << ',' << s.wall_s << ','
-                << s.k_secant * rad_per_arcmin << ','
-                << s.k_tangent * rad_per_arcmin << ',' << s.takeup_rad << ','
-                << s.k_secant_elastic << ',' << s.reaction_torque_Nm << ','
-                << s.max_pin_force_N << '\n';
+      write_stiffness_row(stiffness, s);
       for (const PinForceRow &p : pins)
-        pin_forces << p.step << ',' << p.crank_deg << ',' << p.disc << ','
-                   << p.pin << ',' << p.fx_N << ',' << p.fy_N << ',' << p.fn_N
-                   << ',' << p.arm_mm << ',' << p.clearance_um << ','
-                   << p.phase_deg << ',' << p.approach_um << ','
-                   << p.pair_stiffness_N_per_mm << ',' << p.contact_x_mm << ','
-                   << p.contact_y_mm << ',' << p.contact_halfwidth_um << ','
-                   << p.hertz_halfwidth_um << '\n';
+        write_pin_force_row(pin_forces, p);
       stiffness.flush();
       pin_forces.flush();
     }

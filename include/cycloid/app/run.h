@@ -45,6 +45,16 @@ namespace cycloid
                     const MPI_Comm                   comm);
 
     /**
+     * `Run = transient`: elastodynamics with contact while the crank turns
+     * (dynamics::Transient); writes energy.csv, stiffness.csv,
+     * pin_forces.csv per step, transient.h5, and optionally VTU and
+     * checkpoints.
+     */
+    void
+    run_transient(const parameters::AllParameters &parameters,
+                  const MPI_Comm                   comm);
+
+    /**
      * `Run = mesh`: generate the scene's mesh (Scene/Dimension), write it
      * as mesh.pvtu / mesh_boundary.pvtu with body, boundary and rank ids,
      * print cell counts and quality, and fail on inverted cells.

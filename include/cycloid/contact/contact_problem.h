@@ -252,6 +252,51 @@ namespace cycloid
       solve_displacement(const double beta, const std::string &label);
 
       /** Slave nodes (the same on every rank). */
+      /**
+       * Rigid placement of the slave bodies relative to the masters: slave
+       * positions (and the quadrature points of the mortar weights) are
+       * mapped by @p placement(body, x) before the gap, the normal and the
+       * master coefficients are computed. Displacements stay in the mesh
+       * axes. Used by transient runs, where the disc follows the crank while
+       * its mesh stays at the initial crank angle. Takes effect with
+       * update_geometry().
+       */
+      void
+      set_placement(
+        const std::function<dealii::Point<dim>(dealii::types::material_id,
+                                               const dealii::Point<dim> &)>
+          &placement);
+
+      /**
+       * Recompute the slave nodes (gaps, normals, master coefficients) for
+       * the current placement, keeping the active set by DoF and the fixed
+       * DoFs and load. The slave numbering may change.
+       */
+      void
+      update_geometry();
+
+      /** The time-discrete (effective) operator; see
+       * elasticity::DynamicTerms. */
+      void
+      set_dynamic_terms(const elasticity::DynamicTerms &terms)
+      {
+        problem->set_dynamic_terms(terms);
+      }
+
+      /** The DoFs that turn by beta and their unit-rotation displacement. */
+      const std::map<dealii::types::global_dof_index, double> &
+      load_pattern() const
+      {
+        return load;
+      }
+
+      /** The elasticity problem (for energies and mass products). */
+      elasticity::LinearElasticity<dim> &
+      elasticity_problem()
+      {
+        return *problem;
+      }
+
       const std::vector<SlaveNode<dim>> &
       slave_nodes() const
       {
@@ -368,6 +413,9 @@ namespace cycloid
       std::vector<dealii::Tensor<1, dim>>   reactions;
       std::vector<double>                   gaps;
       dealii::TrilinosWrappers::MPI::Vector u_last;
+      std::function<dealii::Point<dim>(dealii::types::material_id,
+                                       const dealii::Point<dim> &)>
+        placement;
     };
   } // namespace contact
 } // namespace cycloid

@@ -52,10 +52,14 @@ namespace cycloid
     {
     public:
       /** Build the mesh of the scene at crank angle @p psi [rad] and the
-       * contact problem on it. */
+       * contact problem on it; with @p sweep != 0 [rad] the mesh is refined
+       * at the contacts of crank angles psi ... psi + sweep (transient runs). */
       QuasiStatic(const parameters::AllParameters &parameters,
                   const double                     psi,
-                  const MPI_Comm                   comm);
+                  const MPI_Comm                   comm,
+                  const double                     sweep = 0.);
+
+      virtual ~QuasiStatic() = default;
 
       /**
        * Solve for output torque @p load [N m] (or, with Loading/Control =
@@ -102,7 +106,7 @@ namespace cycloid
       output_results(const unsigned int                           step,
                      std::vector<std::pair<double, std::string>> &records);
 
-    private:
+    protected:
       void
       make_grid();
       void
@@ -123,7 +127,8 @@ namespace cycloid
 
       const parameters::AllParameters              prm;
       const MPI_Comm                               comm;
-      const double                                 psi;
+      double                                       psi;
+      const double                                 sweep;
       const geometry::CycloidGeometry              geo;
       dealii::ConditionalOStream                   pcout;
       mutable dealii::TimerOutput                  timer;

@@ -59,6 +59,27 @@ namespace cycloid
      * @f]
      * with Dirichlet and other constraints supplied by the caller.
      */
+    /**
+     * @brief Terms of a time-discrete (effective) operator: the matrix
+     * becomes A = stiffness K + mass M (+ the inhomogeneities of the
+     * constraints), and the first constraint set's right-hand side gains the
+     * history load b = M w_M + K w_K. A Newmark or generalized-alpha step
+     * with Rayleigh damping folds into these four terms (see
+     * dynamics::ContactDynamics). Mass is consistent, from each body's
+     * density.
+     */
+    struct DynamicTerms
+    {
+      /** Factor of K in A [-]. */
+      double stiffness = 1.;
+      /** Factor of M in A [1/s^2]. */
+      double mass = 0.;
+      /** w_M (ghosted; zero size: none) [mm/s^2]. */
+      dealii::TrilinosWrappers::MPI::Vector mass_load;
+      /** w_K (ghosted; zero size: none) [mm]. */
+      dealii::TrilinosWrappers::MPI::Vector stiffness_load;
+    };
+
     template <int dim>
     class LinearElasticity
     {
@@ -129,6 +150,42 @@ namespace cycloid
        * DoFs, where equilibrium makes them vanish), and the l2 norm of
        * f_int(u) itself for scale.
        */
+      /**
+       * Use the effective operator of @p terms from the next assemble_sets()
+       * on (matrix, the first set's right-hand side, effective_forces() and
+       * residual_norms()). Without a call the problem is static (A = K).
+       */
+      void
+      set_dynamic_terms(const DynamicTerms &terms);
+
+      /** Back to the static operator A = K, b = 0. */
+      void
+      clear_dynamic_terms()
+      {
+        dynamic = DynamicTerms();
+      }
+
+      /**
+       * Nodal forces of the effective operator, A u - b (with_load) or A u;
+       * static problems: K u. Ghosted [N, per mm thickness in 2D].
+       */
+      dealii::TrilinosWrappers::MPI::Vector
+      effective_forces(const dealii::TrilinosWrappers::MPI::Vector &u,
+                       const bool with_load) const;
+
+      /**
+       * Elastic energy u^T K u / 2 and kinetic energy v^T M v / 2 [N mm =
+       * mJ; per mm thickness in 2D] of a displacement @p u [mm] and a
+       * velocity @p v [mm/s] (both ghosted).
+       */
+      std::pair<double, double>
+      energies(const dealii::TrilinosWrappers::MPI::Vector &u,
+               const dealii::TrilinosWrappers::MPI::Vector &v) const;
+
+      /** M x for a ghosted @p x, ghosted result [N]. */
+      dealii::TrilinosWrappers::MPI::Vector
+      mass_times(const dealii::TrilinosWrappers::MPI::Vector &x) const;
+
       std::pair<double, double>
       residual_norms(const dealii::TrilinosWrappers::MPI::Vector &u,
                      const unsigned int                           k) const;
@@ -251,7 +308,15 @@ namespace cycloid
         const dealii::TrilinosWrappers::MPI::Vector &u,
         dealii::TrilinosWrappers::MPI::Vector       &f,
         const dealii::AffineConstraints<double>     *condense,
-        dealii::TrilinosWrappers::MPI::Vector       *condensed) const;
+        dealii::TrilinosWrappers::MPI::Vector       *condensed,
+        const bool                                   effective = false,
+        const bool                                   with_load = false) const;
+
+      /** Density of body @p m in t/mm^3 (the consistent unit with N, mm, s). */
+      double
+      density(const dealii::types::material_id m) const;
+
+      DynamicTerms dynamic;
 
       const dealii::parallel::TriangulationBase<dim> &triangulation;
       const MPI_Comm                                  comm;

@@ -125,6 +125,19 @@ namespace cycloid
                    const double                     psi);
 
     /**
+     * @brief The contact points met while the crank turns from @p psi to
+     * @p psi + @p sweep [rad], for a mesh placed at @p psi: the pins' points
+     * (housing frame) and the discs' material points carried back to their
+     * placement at @p psi, sampled every 1/20 of a mesh period. With
+     * @p sweep = 0 the points of contact_points().
+     */
+    std::vector<dealii::Point<2>>
+    contact_points_along(const geometry::CycloidGeometry &geometry,
+                         const unsigned int               n_discs,
+                         const double                     psi,
+                         const double                     sweep);
+
+    /**
      * @brief Axial extent [z0, z1] of disc @p d in a 3D scene: discs of
      * width b, the second one after an axial gap (mm).
      */
@@ -138,7 +151,9 @@ namespace cycloid
      * with material and boundary ids, move the coarse boundary vertices onto
      * the exact curves and attach the exact manifolds (cycloid profile, pin
      * and hole cylinders), then apply the prm's global and contact
-     * refinements. @p tria must be empty.
+     * refinements. @p tria must be empty. With @p sweep != 0 [rad] the
+     * contact size and refinement cover the contact points of crank angles
+     * psi ... psi + sweep (transient runs, whose discs follow the crank).
      *
      * 2D: one section at z = 0 (plane strain), quadrilaterals. 3D: the
      * sections extruded through the disc widths into hexahedra, the discs
@@ -149,7 +164,8 @@ namespace cycloid
     void
     create_stage_mesh(const parameters::AllParameters &prm,
                       const double                     psi,
-                      dealii::Triangulation<dim>      &tria);
+                      dealii::Triangulation<dim>      &tria,
+                      const double                     sweep = 0.);
 
     /**
      * @brief Attach the exact manifolds of the scene to @p tria's manifold

@@ -5,6 +5,7 @@
 
 #include <cycloid/analytic/analytic_parameters.h>
 #include <cycloid/contact/contact_parameters.h>
+#include <cycloid/dynamics/transient_parameters.h>
 #include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/mesh/mesh_parameters.h>
 #include <cycloid/parameters/loading.h>
@@ -33,6 +34,8 @@ namespace cycloid
       analytic::AnalyticParameters analytic;
       mesh::MeshParameters         mesh;
       contact::ContactParameters   contact;
+      /** Subsection Transient. */
+      dynamics::TransientParameters transient;
 
       /** Declare every subsection. */
       static void

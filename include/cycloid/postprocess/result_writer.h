@@ -2,6 +2,7 @@
 #define cycloid_postprocess_result_writer_h
 
 #include <fstream>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,14 @@ namespace cycloid
      * leaves valid files). Only an active writer (MPI rank 0) touches the
      * files.
      */
+    /** One stiffness.csv line (columns of ResultWriter::stiffness_header). */
+    void
+    write_stiffness_row(std::ostream &out, const StiffnessRow &row);
+
+    /** One pin_forces.csv line (columns of ResultWriter::pin_forces_header). */
+    void
+    write_pin_force_row(std::ostream &out, const PinForceRow &row);
+
     class ResultWriter
     {
     public:

@@ -1,0 +1,158 @@
+#ifndef cycloid_dynamics_contact_dynamics_h
+#define cycloid_dynamics_contact_dynamics_h
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <cycloid/contact/contact_problem.h>
+
+#include <iosfwd>
+#include <string>
+
+namespace cycloid
+{
+  namespace dynamics
+  {
+    /** Time schemes of ContactDynamics. */
+    enum class Scheme
+    {
+      /** Trapezoidal rule (beta = 1/4, gamma = 1/2), contact enforced on
+       * the displacement at the end of the step. */
+      newmark,
+      /** Deuflhard-Krause-Ertel (2008): the predictor u_n + dt v_n is
+       * projected onto the admissible set in the mass norm, then an
+       * implicit trapezoidal step from the projected predictor; the contact
+       * force of the previous step is dropped. */
+      contact_stabilised,
+      /** Chung-Hulbert generalized-alpha with a spectral radius. */
+      generalized_alpha
+    };
+
+    /** The scheme named by @p name (as in prm subsection Transient). */
+    Scheme
+    parse_scheme(const std::string &name);
+
+    /** Settings of ContactDynamics. */
+    struct DynamicsSettings
+    {
+      Scheme scheme = Scheme::contact_stabilised;
+      /** rho_inf of generalized-alpha [-]. */
+      double spectral_radius = 0.8;
+      /** Rayleigh damping C = a M + b K: a [1/s]. */
+      double rayleigh_mass = 0.;
+      /** Rayleigh damping C = a M + b K: b [s]. */
+      double rayleigh_stiffness = 0.;
+    };
+
+    /** What one time step did; energies in N mm (per mm thickness in 2D),
+     * accumulated from t = 0. */
+    struct StepReport
+    {
+      /** The contact solve of the end-of-step state (beta, reaction). */
+      contact::ContactState state;
+      /** Active-set iterations of the step (projection included). */
+      unsigned int iterations = 0;
+      double       elastic    = 0;
+      double       kinetic    = 0;
+      /** Work of the load surface (torque or prescribed rotation). */
+      double bore_work = 0;
+      /** Work of the moving obstacles (closing gaps under pressure). */
+      double contact_work = 0;
+      /** Rayleigh damping dissipation. */
+      double dissipated = 0;
+      /** Largest penetration of a slave node at the end of the step [mm]
+       * (0 if none). */
+      double max_penetration = 0;
+    };
+
+    /**
+     * @brief Elastodynamics M a + C v + K u = r (contact) on a
+     * contact::ContactProblem, one implicit step at a time.
+     *
+     * Each step is a contact problem with the effective operator A = s_K K +
+     * s_M M and the history load of the scheme
+     * (elasticity::DynamicTerms); the primal-dual active set of
+     * ContactProblem solves it, warm-started from the previous step, with
+     * the load surface either torque-controlled (two-solve superposition)
+     * or rotation-controlled. The state (u, v, a, beta) and the energy
+     * accounts persist between steps and can be saved and restored
+     * (checkpoint/restart on the same number of ranks).
+     *
+     * Energy balance: E_kin + E_el - W_load - W_contact + D = E_0, with
+     * W_load the trapezoidal work of the load surface, W_contact the work of
+     * moving obstacles (-lambda d gap0, zero for fixed ones) and D the
+     * Rayleigh dissipation.
+     */
+    template <int dim>
+    class ContactDynamics
+    {
+    public:
+      /** On @p contact (set up, with fixed DoFs and load pattern). */
+      ContactDynamics(contact::ContactProblem<dim> &contact,
+                      const DynamicsSettings       &settings);
+
+      /**
+       * Start at rest and undeformed, or with velocity @p v0 (ghosted;
+       * empty: at rest). The initial acceleration is -a v0 (exact for a
+       * rigid-body initial velocity, which is what the drivers use).
+       */
+      void
+      initialise(const dealii::TrilinosWrappers::MPI::Vector &v0 =
+                   dealii::TrilinosWrappers::MPI::Vector());
+
+      /**
+       * Advance by @p dt. Torque control (@p load_control) with @p value
+       * the load at the end of the step (in the units of
+       * ContactProblem::solve_load), else rotation control with @p value the
+       * rotation beta at the end of the step. Call
+       * ContactProblem::update_geometry() before, if the obstacles moved.
+       */
+      StepReport
+      step(const double       dt,
+           const bool         load_control,
+           const double       value,
+           const std::string &label);
+
+      /** Displacement at the current time (ghosted) [mm]. */
+      const dealii::TrilinosWrappers::MPI::Vector &
+      displacement() const
+      {
+        return u;
+      }
+
+      /** Velocity at the current time (ghosted) [mm/s]. */
+      const dealii::TrilinosWrappers::MPI::Vector &
+      velocity() const
+      {
+        return v;
+      }
+
+      /** Write the state (owned entries of this rank) to @p out. */
+      void
+      save(std::ostream &out) const;
+
+      /** Read a state written by save() on the same mesh and rank. */
+      void
+      load(std::istream &in);
+
+    private:
+      /** Normal contact force and initial gap per slave DoF, for the work
+       * of moving obstacles. */
+      std::map<dealii::types::global_dof_index, std::pair<double, double>>
+      contact_record() const;
+
+      contact::ContactProblem<dim> &contact;
+      const DynamicsSettings        settings;
+      const MPI_Comm                comm;
+
+      dealii::TrilinosWrappers::MPI::Vector u, v, a;
+      double                                beta = 0, beta_old = 0;
+      double                                applied = 0;
+      double                                dt_old = 0;
+      StepReport                            totals;
+      std::map<dealii::types::global_dof_index, std::pair<double, double>>
+        record;
+    };
+  } // namespace dynamics
+} // namespace cycloid
+
+#endif
