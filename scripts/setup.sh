@@ -11,7 +11,7 @@ CYCLOID_PACKAGES=(
   build-essential cmake ccache
   libdeal.ii-dev libgmsh-dev gmsh
   openmpi-bin libgtest-dev numdiff
-  python3 python3-numpy python3-matplotlib python3-vtk9
+  python3 python3-numpy python3-matplotlib python3-vtk9 python3-h5py
 )
 
 cycloid_install_packages() {

@@ -230,6 +230,27 @@ namespace cycloid
       else
         phase_sweep<3>(prm, comm);
     }
+    namespace
+    {
+      /** Create the output directory on rank 0 (after the scene was built:
+       * a scene that cannot be solved leaves no files). */
+      void
+      make_output_directory(const parameters::AllParameters &prm,
+                            const MPI_Comm                   comm)
+      {
+        std::error_code ec;
+        if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+          std::filesystem::create_directories(prm.run.output_directory, ec);
+        const bool failed = dealii::Utilities::MPI::max(ec ? 1 : 0, comm);
+        AssertThrow(!failed,
+                    dealii::ExcMessage("Output directory '" +
+                                       prm.run.output_directory +
+                                       "' cannot be created."));
+      }
+    } // namespace
+
+
+
     void
     run_transient(const parameters::AllParameters &prm, const MPI_Comm comm)
     {
@@ -238,24 +259,16 @@ namespace cycloid
         std::cout << "cycloid-contact: transient FE contact, "
                   << scene_description(prm) << ", from crank angle "
                   << prm.loading.crank_angle_deg << " deg" << std::endl;
-      if (root)
-        {
-          std::error_code ec;
-          std::filesystem::create_directories(prm.run.output_directory, ec);
-          AssertThrow(!ec,
-                      dealii::ExcMessage("Output directory '" +
-                                         prm.run.output_directory +
-                                         "' cannot be created: " +
-                                         ec.message()));
-        }
       if (prm.scene.dimension == 2)
         {
           dynamics::Transient<2> solver(prm, comm);
+          make_output_directory(prm, comm);
           solver.run();
         }
       else
         {
           dynamics::Transient<3> solver(prm, comm);
+          make_output_directory(prm, comm);
           solver.run();
         }
     }

@@ -172,6 +172,11 @@ namespace cycloid
                            contact.solve_load(value + applied, label) :
                            contact.solve_displacement(value, label);
           report.state.reaction -= applied;
+          // Likewise the multipliers of the contact rows are the sum of the
+          // contact forces at t_n and t_{n+1} (the projection absorbs the
+          // old one): M (v_{n+1} - v_n) = dt/2 (... + lambda). Report the
+          // step average lambda/2, the force that carries the impulse.
+          contact.scale_reactions(0.5);
           u_new = contact.displacement();
           // v_{n+1} = v_n + 2/dt (u_{n+1} - u~); the acceleration is not
           // part of the scheme's state.

@@ -441,9 +441,10 @@ namespace cycloid
     void
     Transient<dim>::write_hdf5() const
     {
+      // (The timer's sections synchronise over the ranks: enter on all.)
+      dealii::TimerOutput::Scope scope(this->timer, "hdf5");
       if (dealii::Utilities::MPI::this_mpi_process(this->comm) != 0)
         return;
-      dealii::TimerOutput::Scope scope(this->timer, "hdf5");
       const auto &dir = this->prm.run.output_directory;
       const auto &h   = history;
       const unsigned int n  = h.time.size();

@@ -161,10 +161,9 @@ namespace cycloid
       dealii::Vector<double>                       t(dim);
       // Effective operator s_K K + s_M M and history load M w_M + K w_K.
       const bool has_mass = dynamic.mass != 0.;
-      const bool has_mass_load =
-        dynamic.mass_load.size() > 0 && dynamic.mass_load.l2_norm() > 0;
-      const bool has_stiffness_load = dynamic.stiffness_load.size() > 0 &&
-                                      dynamic.stiffness_load.l2_norm() > 0;
+      // (Ghosted vectors: presence, not norm, decides.)
+      const bool has_mass_load      = dynamic.mass_load.size() > 0;
+      const bool has_stiffness_load = dynamic.stiffness_load.size() > 0;
       dealii::FullMatrix<double> cell_mass(dofs_per_cell, dofs_per_cell);
       dealii::Vector<double>     cell_load(dofs_per_cell),
         cell_w(dofs_per_cell);

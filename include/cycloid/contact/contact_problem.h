@@ -283,6 +283,15 @@ namespace cycloid
         problem->set_dynamic_terms(terms);
       }
 
+      /** Scale the stored slave reactions by @p factor (time schemes whose
+       * multiplier spans two time levels report their step average). */
+      void
+      scale_reactions(const double factor)
+      {
+        for (auto &r : reactions)
+          r *= factor;
+      }
+
       /** The DoFs that turn by beta and their unit-rotation displacement. */
       const std::map<dealii::types::global_dof_index, double> &
       load_pattern() const

@@ -1,0 +1,165 @@
+#!/usr/bin/python3
+"""Transient runs (Run = transient).
+
+Usage:
+  check_transient.py restart FILE.prm EXECUTABLE WORKDIR
+      Runs FILE.prm to its end on 2 ranks; runs it again stopped after the
+      first checkpoint and resumed from it. The resumed run's energy.csv,
+      stiffness.csv, pin_forces.csv and transient.h5 must equal the
+      uninterrupted run's (1e-12 relative; wall times excepted). Also: the
+      HDF5 series equal the CSV columns, no penetration is left at the end
+      of any step, and solution.pvd lists every output step. (In a dynamic
+      state sum F arm differs from T by the disc's inertia torque.)
+  check_transient.py slow FILE.prm EXECUTABLE WORKDIR
+      A slow, damped load ramp with the crank held must end in the
+      quasi-static solution of the same scene and mesh: rotation, engaged
+      pins and every pin force within 1e-3 (measured 1e-5), the kinetic
+      energy gone (1e-6 of the elastic), sum F arm = T (1e-4; measured 6e-6,
+      the inertia torque of the decaying motion), and the
+      energy balance
+      E_kin + E_el + D - W within 1e-3 of W (measured 2e-4).
+"""
+import csv
+import math
+import os
+import re
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+
+def rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def run(exe, prm, cwd, np_=2):
+    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
+    r = subprocess.run(["mpirun", *flags, "--oversubscribe", "-np", str(np_), exe, prm], cwd=cwd,
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        print(r.stdout, r.stderr)
+        raise SystemExit(f"{prm} failed")
+    return r.stdout
+
+
+def variant(text, out, transient_extra="", run_mode=None, drop_transient=False):
+    text = re.sub(r"set Output directory *=.*", f"set Output directory = {out}", text)
+    if run_mode:
+        text = re.sub(r"set Run *=.*", f"set Run = {run_mode}", text)
+    if drop_transient:
+        text = re.sub(r"subsection Transient.*?\nend\n?", "", text, flags=re.S)
+    elif transient_extra:
+        text = text.replace("subsection Transient", "subsection Transient\n" + transient_extra)
+    return text
+
+
+def same(a, b, skip=("wall_s",), tol=1e-12):
+    bad = []
+    if len(a) != len(b):
+        return [f"{len(a)} rows vs {len(b)}"]
+    for k, (ra, rb) in enumerate(zip(a, b)):
+        for key in ra:
+            if key in skip:
+                continue
+            x, y = float(ra[key]), float(rb[key])
+            if math.isnan(x) and math.isnan(y):
+                continue
+            if abs(x - y) > tol * max(abs(x), abs(y), 1e-30) and abs(x - y) > 1e-300:
+                bad.append(f"row {k} {key}: {x!r} vs {y!r}")
+    return bad
+
+
+def restart(prm, exe, work):
+    os.makedirs(work, exist_ok=True)
+    text = open(prm).read()
+    every = int(re.search(r"Checkpoint interval *= *(\d+)", text).group(1))
+    open(f"{work}/full.prm", "w").write(variant(text, "full"))
+    open(f"{work}/part.prm", "w").write(variant(text, "part", f"  set Stop after step = {every}"))
+    open(f"{work}/resume.prm", "w").write(variant(text, "part", "  set Resume = true"))
+    run(exe, "full.prm", work)
+    run(exe, "part.prm", work)
+    n_part = len(rows(f"{work}/part/energy.csv"))
+    out = run(exe, "resume.prm", work)
+    failures = []
+    if n_part != every:
+        failures.append(f"the stopped run wrote {n_part} energy rows, expected {every}")
+    if "resumed from the checkpoint at step" not in out:
+        failures.append("the resumed run did not report its checkpoint")
+    for f in ("energy.csv", "stiffness.csv", "pin_forces.csv"):
+        a, b = rows(f"{work}/full/{f}"), rows(f"{work}/part/{f}")
+        bad = same(a, b)
+        print(f"{f}: {len(a)} rows, uninterrupted vs resumed: {'identical' if not bad else bad[:3]}")
+        failures += [f"{f}: {x}" for x in bad[:5]]
+    energy = rows(f"{work}/full/energy.csv")
+    stiffness = rows(f"{work}/full/stiffness.csv")
+    with h5py.File(f"{work}/full/transient.h5", "r") as h, h5py.File(f"{work}/part/transient.h5", "r") as g:
+        for key, col in (("time_s", "time_s"), ("kinetic_J", "kinetic_J"), ("elastic_J", "elastic_J"),
+                         ("external_work_J", "external_work_J"), ("rotation_rad", "rotation_rad")):
+            series = np.array([float(r[col]) for r in energy])
+            if not np.allclose(h[key][:], series, rtol=1e-10, atol=0):
+                failures.append(f"transient.h5 {key} differs from energy.csv")
+            if not np.array_equal(h[key][:], g[key][:]):
+                failures.append(f"transient.h5 {key}: resumed run differs")
+        fn = h["pin_forces/Fn_N"][:]
+        zp = int(h.attrs["number_of_pins"])
+        if fn.shape != (len(energy), zp):
+            failures.append(f"pin_forces/Fn_N shape {fn.shape}")
+        print(f"transient.h5: {len(h['time_s'])} steps, pin forces {fn.shape}, largest {fn.max():.4g} N")
+    pen = max(float(r["max_penetration_um"]) for r in energy)
+    print(f"largest penetration at the end of a step: {pen:.3g} um")
+    if pen > 1e-6:
+        failures.append(f"penetration {pen} um left at the end of a step")
+    pvd = open(f"{work}/part/solution.pvd").read()
+    steps = re.findall(r'timestep="([0-9.e+-]+)"', pvd)
+    out_every = int(re.search(r"Output interval *= *(\d+)", text).group(1))
+    expect = [s for s in range(1, len(energy) + 1) if s % out_every == 0]
+    if [int(float(s)) for s in steps] != expect:
+        failures.append(f"solution.pvd lists {steps}, expected {expect}")
+    return failures
+
+
+def slow(prm, exe, work):
+    os.makedirs(work, exist_ok=True)
+    text = open(prm).read()
+    open(f"{work}/transient.prm", "w").write(variant(text, "transient"))
+    open(f"{work}/quasi.prm", "w").write(variant(text, "quasi", run_mode="quasi-static", drop_transient=True))
+    run(exe, "transient.prm", work)
+    run(exe, "quasi.prm", work)
+    failures = []
+    st, sq = rows(f"{work}/transient/stiffness.csv")[-1], rows(f"{work}/quasi/stiffness.csv")[-1]
+    bt, bq = float(st["rotation_rad"]), float(sq["rotation_rad"])
+    print(f"rotation: transient end {bt:.8e}, quasi-static {bq:.8e} rad ({bt / bq - 1:+.2e}); "
+          f"pins {st['pins_in_contact']} / {sq['pins_in_contact']}")
+    if abs(bt / bq - 1) > 1e-3 or st["pins_in_contact"] != sq["pins_in_contact"]:
+        failures.append("end state differs from the quasi-static state")
+    pt = [r for r in rows(f"{work}/transient/pin_forces.csv") if r["step"] == st["step"]]
+    pq = rows(f"{work}/quasi/pin_forces.csv")
+    fmax = max(float(r["Fn_N"]) for r in pq)
+    worst = max(abs(float(a["Fn_N"]) - float(b["Fn_N"])) for a, b in zip(pt, pq)) / fmax
+    print(f"pin forces: largest {fmax:.6g} N, worst difference {worst:.2e} of it")
+    if len(pt) != len(pq) or worst > 1e-3:
+        failures.append(f"pin forces differ by {worst:.2e} of the largest")
+    s_arm = float(st["reaction_torque_Nm"])
+    print(f"sum F arm at the end {s_arm:.10g} N m, T {float(st['torque_Nm']):g} N m")
+    if abs(s_arm / float(st["torque_Nm"]) - 1) > 1e-4:
+        failures.append(f"sum F arm {s_arm} != T at the end")
+    e = rows(f"{work}/transient/energy.csv")[-1]
+    kin, el, w = float(e["kinetic_J"]), float(e["elastic_J"]), float(e["external_work_J"])
+    bal = float(e["balance_error_J"])
+    print(f"end: kinetic {kin:.3e} J, elastic {el:.6e} J, work {w:.6e} J, balance error {bal:+.3e} J "
+          f"({bal / w:+.2e} of the work)")
+    if kin > 1e-6 * el:
+        failures.append(f"kinetic energy {kin} J left at the end")
+    if abs(bal) > 1e-3 * w:
+        failures.append(f"energy balance error {bal} J")
+    return failures
+
+
+if __name__ == "__main__":
+    mode, prm, exe, work = sys.argv[1:5]
+    failures = {"restart": restart, "slow": slow}[mode](os.path.abspath(prm), exe, work)
+    print("\n".join(failures) if failures else "all checks passed")
+    sys.exit(1 if failures else 0)
