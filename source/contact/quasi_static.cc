@@ -263,8 +263,9 @@ namespace cycloid
           });
           warm = true;
         }
-      ContactState state      = solve_state(load);
-      unsigned int iterations = state.iterations;
+      ContactState  state      = solve_state(load);
+      unsigned int  iterations = state.iterations;
+      unsigned long linear     = state.linear_iterations;
       for (unsigned int cycle = 0; cycle < prm.mesh.adaptive_cycles; ++cycle)
         {
           const auto n = contact->elasticity().n_dofs();
@@ -273,6 +274,7 @@ namespace cycloid
             break;
           state = solve_state(load);
           iterations += state.iterations;
+          linear += state.linear_iterations;
         }
       {
         dealii::TimerOutput::Scope t(timer, "pin forces");
@@ -281,7 +283,8 @@ namespace cycloid
                                               load;
         pin_forces(torque, state, row, pins);
       }
-      row.iterations = iterations;
+      row.iterations        = iterations;
+      row.linear_iterations = linear;
       row.wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();

@@ -3,6 +3,7 @@
 
 #include <cycloid/dynamics/contact_dynamics.h>
 
+#include <algorithm>
 #include <cmath>
 #include <istream>
 #include <ostream>
@@ -76,21 +77,76 @@ namespace cycloid
 
 
     template <int dim>
-    std::map<dealii::types::global_dof_index, std::pair<double, double>>
+    std::map<dealii::types::global_dof_index,
+             std::pair<double, contact::SlaveNode<dim>>>
     ContactDynamics<dim>::contact_record() const
     {
-      std::map<dealii::types::global_dof_index, std::pair<double, double>> r;
+      std::map<dealii::types::global_dof_index,
+               std::pair<double, contact::SlaveNode<dim>>>
+                  r;
       const auto &slaves    = contact.slave_nodes();
       const auto &reactions = contact.slave_reactions();
       for (unsigned int i = 0; i < slaves.size(); ++i)
         {
+          if (slaves[i].hanging)
+            continue;
           double lambda = 0;
           for (unsigned int c = 0; c < dim; ++c)
             lambda += slaves[i].normal[c] * reactions[i][c];
           r[slaves[i].dofs[0]] = {contact.active_set().count(i) ? lambda : 0.,
-                                  slaves[i].gap0};
+                                  slaves[i]};
         }
       return r;
+    }
+
+
+
+    template <int dim>
+    double
+    ContactDynamics<dim>::obstacle_work(
+      const Vector &u_mid,
+      const std::map<dealii::types::global_dof_index,
+                     std::pair<double, contact::SlaveNode<dim>>> &new_record)
+      const
+    {
+      const auto &el    = contact.elasticity();
+      const auto &owned = el.locally_owned_dofs();
+      // Ghosts: every DoF that an old or new constraint reads.
+      dealii::IndexSet ghosts = el.locally_relevant_dofs();
+      std::vector<dealii::types::global_dof_index> extra;
+      for (const auto *rec : {&record, &new_record})
+        for (const auto &[d, entry] : *rec)
+          {
+            const auto &s = entry.second;
+            extra.insert(extra.end(), s.master_dofs.begin(), s.master_dofs.end());
+            extra.insert(extra.end(), s.dofs.begin(), s.dofs.end());
+          }
+      std::sort(extra.begin(), extra.end());
+      extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+      ghosts.add_indices(extra.begin(), extra.end());
+      Vector x(owned, ghosts, comm);
+      x = u_mid;
+      const auto G = [&](const contact::SlaveNode<dim> &s) {
+        double g = s.gap0;
+        for (unsigned int c = 0; c < 2; ++c)
+          g += s.normal[c] * x[s.dofs[c]];
+        for (unsigned int a = 0; a < s.master_dofs.size(); ++a)
+          g -= s.master_coefficients[a] * x[s.master_dofs[a]];
+        return g;
+      };
+      double w = 0;
+      for (const auto &[d, entry] : new_record)
+        {
+          if (!owned.is_element(d))
+            continue;
+          const auto old = record.find(d);
+          if (old == record.end())
+            continue;
+          const double lambda = 0.5 * (old->second.first + entry.first);
+          if (lambda != 0.)
+            w -= lambda * (G(entry.second) - G(old->second.second));
+        }
+      return dealii::Utilities::MPI::sum(w, comm);
     }
 
 
@@ -117,6 +173,7 @@ namespace cycloid
       const double aR = settings.rayleigh_mass, bR = settings.rayleigh_stiffness;
 
       StepReport   report;
+      unsigned int projection_linear = 0;
       const double Q_old = totals.state.reaction;
       Vector       u_new(owned, comm), v_new(owned, comm), a_new(owned, comm);
       if (settings.scheme == Scheme::contact_stabilised)
@@ -147,6 +204,7 @@ namespace cycloid
           const auto p = contact.solve_displacement(beta_pred,
                                                     label + " (projection)");
           report.iterations += p.iterations;
+          projection_linear = p.linear_iterations;
           Vector tilde(owned, comm);
           tilde = contact.displacement();
 
@@ -227,6 +285,7 @@ namespace cycloid
           v_new.add(dt * (1. - g), an, dt * g, a_new);
         }
       report.iterations += report.state.iterations;
+      report.state.linear_iterations += projection_linear;
       contact.set_dynamic_terms(elasticity::DynamicTerms());
 
       // Energies and work.
@@ -235,13 +294,12 @@ namespace cycloid
       const double Q_prev   = load_control ? applied : Q_old;
       totals.bore_work += 0.5 * (Q_prev + Q_new) * (beta_new - beta);
       const auto new_record = contact_record();
-      for (const auto &[dof, lg] : new_record)
-        {
-          const auto old = record.find(dof);
-          if (old != record.end())
-            totals.contact_work -= 0.5 * (old->second.first + lg.first) *
-                                   (lg.second - old->second.second);
-        }
+      {
+        Vector mid(un);
+        mid.add(1., u_new);
+        mid *= 0.5;
+        totals.contact_work += obstacle_work(mid, new_record);
+      }
       record = new_record;
       if (aR > 0 || bR > 0)
         {
@@ -304,11 +362,23 @@ namespace cycloid
         for (const auto i : owned)
           write((*x)[i]);
       write_count(record.size());
-      for (const auto &[dof, lg] : record)
+      for (const auto &[dof, entry] : record)
         {
+          const auto &sn = entry.second;
           write_count(dof);
-          write(lg.first);
-          write(lg.second);
+          write(entry.first);
+          write(sn.gap0);
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              write(sn.normal[c]);
+              write_count(sn.dofs[c]);
+            }
+          write_count(sn.master_dofs.size());
+          for (unsigned int a = 0; a < sn.master_dofs.size(); ++a)
+            {
+              write_count(sn.master_dofs[a]);
+              write(sn.master_coefficients[a]);
+            }
         }
       std::set<dealii::types::global_dof_index> active;
       for (const unsigned int i : contact.active_set())
@@ -366,9 +436,22 @@ namespace cycloid
       const auto n_record = read_count();
       for (std::uint64_t k = 0; k < n_record; ++k)
         {
-          const auto   dof    = read_count();
-          const double lambda = read();
-          record[dof]         = {lambda, read()};
+          const auto              dof    = read_count();
+          const double            lambda = read();
+          contact::SlaveNode<dim> sn;
+          sn.gap0 = read();
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              sn.normal[c] = read();
+              sn.dofs[c]   = read_count();
+            }
+          const auto n_masters = read_count();
+          for (std::uint64_t a = 0; a < n_masters; ++a)
+            {
+              sn.master_dofs.push_back(read_count());
+              sn.master_coefficients.push_back(read());
+            }
+          record[dof] = {lambda, sn};
         }
       std::set<dealii::types::global_dof_index> active;
       const auto                                n_active = read_count();

@@ -197,6 +197,7 @@ namespace cycloid
                   << " s, crank speed " << t.crank_speed << " deg/s"
                   << std::endl;
 
+      bool               warned = false;
       const unsigned int last =
         t.stop_after_step > 0 ? std::min(t.stop_after_step, n_steps) : n_steps;
       for (unsigned int step = first + 1; step <= last; ++step)
@@ -227,7 +228,8 @@ namespace cycloid
           row.step       = step;
           row.crank_deg  = psi_now / deg;
           row.k_tangent  = std::numeric_limits<double>::quiet_NaN();
-          row.iterations = report.iterations;
+          row.iterations        = report.iterations;
+          row.linear_iterations = report.state.linear_iterations;
           row.wall_s     = std::chrono::duration<double>(
                          std::chrono::steady_clock::now() - step_start)
                          .count();
@@ -263,6 +265,29 @@ namespace cycloid
               stiffness.flush();
               pin_forces.flush();
             }
+          // The energy balance is the stability test: a scheme that chatters
+          // at contact gains energy (plain Newmark) and its forces are then
+          // wrong. Stop with a message rather than write such numbers on.
+          if (std::abs(relative) > 0.05 && !warned && external > 0)
+            {
+              warned = true;
+              this->pcout << "  warning: energy balance error "
+                          << 100. * relative << " % of the work at step "
+                          << step << std::endl;
+            }
+          AssertThrow(std::abs(relative) <= t.max_energy_error ||
+                        external <= 0,
+                      dealii::ExcMessage(
+                        "transient: the energy balance error reached " +
+                        std::to_string(100. * relative) +
+                        " % of the work at " + label.str() +
+                        " (Transient/Maximum energy error " +
+                        std::to_string(100. * t.max_energy_error) +
+                        " %). The scheme '" + t.scheme +
+                        "' is unstable at contact here (chatter); use Scheme "
+                        "= contact-stabilised or generalized-alpha, or a "
+                        "smaller Time step. The rows written so far are "
+                        "valid."));
           history.time.push_back(time);
           history.crank_deg.push_back(row.crank_deg);
           history.torque.push_back(torque);

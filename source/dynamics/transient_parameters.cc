@@ -75,6 +75,14 @@ namespace cycloid
                           Bool(),
                           "Continue from the checkpoint in the output "
                           "directory (same prm, same number of MPI ranks).");
+        prm.declare_entry(
+          "Maximum energy error",
+          "0.25",
+          Double(0., 1e6),
+          "The run stops with an error when |E_kin + E_el + D - E_0 - W| "
+          "exceeds this fraction of the work W done on the stage (plain "
+          "Newmark chattering at contact gains energy) [-]; a warning is "
+          "printed from 5 %.");
         prm.declare_entry("Stop after step",
                           "0",
                           Integer(0),
@@ -103,6 +111,7 @@ namespace cycloid
         checkpoint_interval = prm.get_integer("Checkpoint interval");
         resume              = prm.get_bool("Resume");
         stop_after_step     = prm.get_integer("Stop after step");
+        max_energy_error    = prm.get_double("Maximum energy error");
       }
       prm.leave_subsection();
     }

@@ -16,7 +16,7 @@ namespace cycloid
              "K_tangent_Nm_per_rad,pins_in_contact,active_set_iterations,dofs,"
              "wall_s,K_secant_Nm_per_arcmin,K_tangent_Nm_per_arcmin,"
              "takeup_rad,K_secant_elastic_Nm_per_rad,reaction_torque_Nm,"
-             "max_pin_force_N";
+             "max_pin_force_N,linear_iterations";
     }
 
 
@@ -62,7 +62,7 @@ namespace cycloid
           << s.wall_s << ',' << s.k_secant * rad_per_arcmin << ','
           << s.k_tangent * rad_per_arcmin << ',' << s.takeup_rad << ','
           << s.k_secant_elastic << ',' << s.reaction_torque_Nm << ','
-          << s.max_pin_force_N << '\n';
+          << s.max_pin_force_N << ',' << s.linear_iterations << '\n';
     }
 
 

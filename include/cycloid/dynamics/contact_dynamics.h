@@ -135,10 +135,19 @@ namespace cycloid
       load(std::istream &in);
 
     private:
-      /** Normal contact force and initial gap per slave DoF, for the work
-       * of moving obstacles. */
-      std::map<dealii::types::global_dof_index, std::pair<double, double>>
+      /** The contact constraints of the current state with their normal
+       * forces, by the slave's first DoF: for the work of moving obstacles. */
+      std::map<dealii::types::global_dof_index,
+               std::pair<double, contact::SlaveNode<dim>>>
       contact_record() const;
+
+      /** Work of moving obstacles from the old record to the current
+       * constraints, at the mid-step displacement @p u_mid (owned). */
+      double
+      obstacle_work(const dealii::TrilinosWrappers::MPI::Vector &u_mid,
+                    const std::map<dealii::types::global_dof_index,
+                                   std::pair<double, contact::SlaveNode<dim>>>
+                      &new_record) const;
 
       contact::ContactProblem<dim> &contact;
       const DynamicsSettings        settings;
@@ -149,7 +158,8 @@ namespace cycloid
       double                                applied = 0;
       double                                dt_old = 0;
       StepReport                            totals;
-      std::map<dealii::types::global_dof_index, std::pair<double, double>>
+      std::map<dealii::types::global_dof_index,
+               std::pair<double, contact::SlaveNode<dim>>>
         record;
     };
   } // namespace dynamics

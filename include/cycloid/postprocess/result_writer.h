@@ -31,6 +31,8 @@ namespace cycloid
       double        k_secant_elastic   = 0; ///< T / (beta - takeup)
       double        reaction_torque_Nm = 0; ///< sum F * arm
       double        max_pin_force_N    = 0;
+      /** CG iterations of all linear solves of the state. */
+      unsigned long linear_iterations = 0;
     };
 
     /**
