@@ -4,6 +4,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
 
 #include <cycloid/analytic/stage_model.h>
 #include <cycloid/app/run.h>
@@ -135,6 +136,11 @@ namespace cycloid
               row.iterations         = state.iterations;
               row.dofs               = 0;
               row.wall_s             = wall;
+              {
+                dealii::Utilities::System::MemoryStats stats;
+                dealii::Utilities::System::get_memory_stats(stats);
+                row.peak_memory_MB = stats.VmHWM / 1024.; // rank 0 only
+              }
               row.takeup_rad         = state.takeup;
               row.k_secant_elastic   = state.k_secant_elastic();
               row.reaction_torque_Nm = state.reaction_torque;

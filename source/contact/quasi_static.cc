@@ -285,6 +285,7 @@ namespace cycloid
       }
       row.iterations        = iterations;
       row.linear_iterations = linear;
+      row.peak_memory_MB    = postprocess::peak_memory_MB(comm);
       row.wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();

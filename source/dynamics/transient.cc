@@ -230,6 +230,7 @@ namespace cycloid
           row.k_tangent  = std::numeric_limits<double>::quiet_NaN();
           row.iterations        = report.iterations;
           row.linear_iterations = report.state.linear_iterations;
+          row.peak_memory_MB    = postprocess::peak_memory_MB(this->comm);
           row.wall_s     = std::chrono::duration<double>(
                          std::chrono::steady_clock::now() - step_start)
                          .count();

@@ -1,4 +1,6 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 
 #include <cycloid/postprocess/result_writer.h>
 
@@ -16,7 +18,7 @@ namespace cycloid
              "K_tangent_Nm_per_rad,pins_in_contact,active_set_iterations,dofs,"
              "wall_s,K_secant_Nm_per_arcmin,K_tangent_Nm_per_arcmin,"
              "takeup_rad,K_secant_elastic_Nm_per_rad,reaction_torque_Nm,"
-             "max_pin_force_N,linear_iterations";
+             "max_pin_force_N,linear_iterations,peak_memory_MB";
     }
 
 
@@ -53,6 +55,18 @@ namespace cycloid
 
 
 
+    double
+    peak_memory_MB(const MPI_Comm comm)
+    {
+      dealii::Utilities::System::MemoryStats stats;
+      dealii::Utilities::System::get_memory_stats(stats);
+      return dealii::Utilities::MPI::sum(static_cast<double>(stats.VmHWM),
+                                         comm) /
+             1024.;
+    }
+
+
+
     void
     write_stiffness_row(std::ostream &out, const StiffnessRow &s)
     {
@@ -62,7 +76,8 @@ namespace cycloid
           << s.wall_s << ',' << s.k_secant * rad_per_arcmin << ','
           << s.k_tangent * rad_per_arcmin << ',' << s.takeup_rad << ','
           << s.k_secant_elastic << ',' << s.reaction_torque_Nm << ','
-          << s.max_pin_force_N << ',' << s.linear_iterations << '\n';
+          << s.max_pin_force_N << ',' << s.linear_iterations << ','
+          << s.peak_memory_MB << '\n';
     }
 
 

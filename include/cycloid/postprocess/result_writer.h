@@ -1,6 +1,8 @@
 #ifndef cycloid_postprocess_result_writer_h
 #define cycloid_postprocess_result_writer_h
 
+#include <mpi.h>
+
 #include <fstream>
 #include <ostream>
 #include <string>
@@ -33,7 +35,14 @@ namespace cycloid
       double        max_pin_force_N    = 0;
       /** CG iterations of all linear solves of the state. */
       unsigned long linear_iterations = 0;
+      /** Peak resident memory of the run so far, summed over the ranks
+       * (VmHWM) [MB]. */
+      double peak_memory_MB = 0;
     };
+
+    /** Peak resident memory (VmHWM) summed over the ranks of @p comm [MB]. */
+    double
+    peak_memory_MB(const MPI_Comm comm);
 
     /**
      * @brief One row of `pin_forces.csv`: one pin against one disc in one
