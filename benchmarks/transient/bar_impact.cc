@@ -12,6 +12,7 @@
 // (tests/check_bar_impact.py checks it; benchmarks/transient/run.py plots.)
 
 #include <deal.II/base/mpi.h>
+
 #include <deal.II/distributed/shared_tria.h>
 #include <deal.II/grid/grid_generator.h>
 
@@ -37,20 +38,22 @@ main(int argc, char *argv[])
   try
     {
       dynamics::DynamicsSettings settings;
-      settings.scheme = dynamics::parse_scheme(argv[1]);
+      settings.scheme          = dynamics::parse_scheme(argv[1]);
       const unsigned int cells = std::stoi(argv[2]);
       const double       cfl   = std::stod(argv[3]);
       if (argc > 4)
         settings.spectral_radius = std::stod(argv[4]);
 
       const double L = 10., h = 1., E = 200000., rho = 7850., v0 = 1000.;
-      const double c  = std::sqrt(E / (rho * 1e-12)); // mm/s
-      const double dt = cfl * (L / cells) / c;
+      const double c         = std::sqrt(E / (rho * 1e-12)); // mm/s
+      const double dt        = cfl * (L / cells) / c;
       const double T_contact = 2 * L / c;
 
       dealii::parallel::shared::Triangulation<2> tria(comm);
-      dealii::GridGenerator::subdivided_hyper_rectangle(
-        tria, {cells, 4}, dealii::Point<2>(0, 0), dealii::Point<2>(L, h));
+      dealii::GridGenerator::subdivided_hyper_rectangle(tria,
+                                                        {cells, 4},
+                                                        dealii::Point<2>(0, 0),
+                                                        dealii::Point<2>(L, h));
       for (const auto &cell : tria.active_cell_iterators())
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary())
@@ -71,7 +74,7 @@ main(int argc, char *argv[])
       problem.set_load({});
 
       // Initial velocity v0 along x.
-      const auto &el = problem.elasticity();
+      const auto                           &el = problem.elasticity();
       dealii::TrilinosWrappers::MPI::Vector v(el.locally_owned_dofs(), comm);
       for (const auto &cell : el.dof_handler().active_cell_iterators())
         if (cell->is_locally_owned())
@@ -88,16 +91,15 @@ main(int argc, char *argv[])
       dealii::TrilinosWrappers::MPI::Vector vg(el.locally_owned_dofs(),
                                                el.locally_relevant_dofs(),
                                                comm);
-      vg = v;
+      vg                = v;
       const double mass = rho * 1e-12 * L * h;
 
       dynamics::ContactDynamics<2> dyn(problem, settings);
       dyn.initialise(vg);
       const double E0 = 0.5 * mass * v0 * v0;
       if (root)
-        std::cout << std::setprecision(10)
-                  << "# bar L " << L << " mm, c " << c << " mm/s, dt " << dt
-                  << " s, contact time 2L/c " << T_contact
+        std::cout << std::setprecision(10) << "# bar L " << L << " mm, c " << c
+                  << " mm/s, dt " << dt << " s, contact time 2L/c " << T_contact
                   << " s, force rho c h v0 " << rho * 1e-12 * c * h * v0
                   << " N/mm, E0 " << E0 << " N mm\n"
                   << "step,time_s,contact_force_N_per_mm,velocity_mm_per_s,"
@@ -111,10 +113,11 @@ main(int argc, char *argv[])
             dyn.step(dt, false, 0., "bar impact step " + std::to_string(step));
           double force = 0;
           for (const unsigned int i : problem.active_set())
-            force += problem.slave_reactions()[i] * problem.slave_nodes()[i].normal;
+            force +=
+              problem.slave_reactions()[i] * problem.slave_nodes()[i].normal;
           // Momentum velocity (M v) . e_x / m.
-          const auto   Mv = el.mass_times(dyn.velocity());
-          double       p  = 0;
+          const auto Mv = el.mass_times(dyn.velocity());
+          double     p  = 0;
           for (const auto i : el.locally_owned_dofs())
             p += Mv[i] * v[i] / v0;
           p = dealii::Utilities::MPI::sum(p, comm);
@@ -122,8 +125,8 @@ main(int argc, char *argv[])
             r.kinetic + r.elastic - E0 - r.bore_work - r.contact_work;
           if (root)
             std::cout << step << ',' << step * dt << ',' << force << ','
-                      << p / mass << ',' << r.kinetic << ',' << r.elastic
-                      << ',' << balance << ',' << r.max_penetration << ','
+                      << p / mass << ',' << r.kinetic << ',' << r.elastic << ','
+                      << balance << ',' << r.max_penetration << ','
                       << problem.active_set().size() << ',' << r.iterations
                       << '\n';
         }

@@ -126,16 +126,16 @@ namespace cycloid
               beta = state.rotation;
 
               postprocess::StiffnessRow row;
-              row.step               = step;
-              row.crank_deg          = psi * to_deg;
-              row.torque_Nm          = state.torque;
-              row.rotation_rad       = state.rotation;
-              row.k_secant           = state.k_secant();
-              row.k_tangent          = state.k_tangent;
-              row.pins_in_contact    = state.pins_in_contact;
-              row.iterations         = state.iterations;
-              row.dofs               = 0;
-              row.wall_s             = wall;
+              row.step            = step;
+              row.crank_deg       = psi * to_deg;
+              row.torque_Nm       = state.torque;
+              row.rotation_rad    = state.rotation;
+              row.k_secant        = state.k_secant();
+              row.k_tangent       = state.k_tangent;
+              row.pins_in_contact = state.pins_in_contact;
+              row.iterations      = state.iterations;
+              row.dofs            = 0;
+              row.wall_s          = wall;
               {
                 dealii::Utilities::System::MemoryStats stats;
                 dealii::Utilities::System::get_memory_stats(stats);

@@ -646,8 +646,7 @@ namespace cycloid
     void
     ContactProblem<dim>::set_placement(
       const std::function<dealii::Point<dim>(dealii::types::material_id,
-                                             const dealii::Point<dim> &)>
-        &p)
+                                             const dealii::Point<dim> &)> &p)
     {
       placement = p;
     }

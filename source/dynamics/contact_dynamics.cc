@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+
 #include <deal.II/base/mpi.h>
 
 #include <cycloid/dynamics/contact_dynamics.h>
@@ -35,17 +36,15 @@ namespace cycloid
 
 
     template <int dim>
-    ContactDynamics<dim>::ContactDynamics(
-      contact::ContactProblem<dim> &contact,
-      const DynamicsSettings       &settings)
+    ContactDynamics<dim>::ContactDynamics(contact::ContactProblem<dim> &contact,
+                                          const DynamicsSettings &settings)
       : contact(contact)
       , settings(settings)
       , comm(contact.elasticity().dof_handler().get_communicator())
     {
-      AssertThrow(settings.spectral_radius >= 0 &&
-                    settings.spectral_radius <= 1,
-                  dealii::ExcMessage(
-                    "Transient/Spectral radius must lie in [0, 1]."));
+      AssertThrow(
+        settings.spectral_radius >= 0 && settings.spectral_radius <= 1,
+        dealii::ExcMessage("Transient/Spectral radius must lie in [0, 1]."));
     }
 
 
@@ -67,11 +66,11 @@ namespace cycloid
           a = acc;
         }
       beta = beta_old = applied = dt_old = 0;
-      totals                          = StepReport();
-      const auto e                    = el.energies(u, v);
-      totals.elastic                  = e.first;
-      totals.kinetic                  = e.second;
-      record                          = contact_record();
+      totals                             = StepReport();
+      const auto e                       = el.energies(u, v);
+      totals.elastic                     = e.first;
+      totals.kinetic                     = e.second;
+      record                             = contact_record();
     }
 
 
@@ -104,7 +103,7 @@ namespace cycloid
     template <int dim>
     double
     ContactDynamics<dim>::obstacle_work(
-      const Vector &u_mid,
+      const Vector                                               &u_mid,
       const std::map<dealii::types::global_dof_index,
                      std::pair<double, contact::SlaveNode<dim>>> &new_record)
       const
@@ -118,14 +117,16 @@ namespace cycloid
         for (const auto &[d, entry] : *rec)
           {
             const auto &s = entry.second;
-            extra.insert(extra.end(), s.master_dofs.begin(), s.master_dofs.end());
+            extra.insert(extra.end(),
+                         s.master_dofs.begin(),
+                         s.master_dofs.end());
             extra.insert(extra.end(), s.dofs.begin(), s.dofs.end());
           }
       std::sort(extra.begin(), extra.end());
       extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
       ghosts.add_indices(extra.begin(), extra.end());
       Vector x(owned, ghosts, comm);
-      x = u_mid;
+      x            = u_mid;
       const auto G = [&](const contact::SlaveNode<dim> &s) {
         double g = s.gap0;
         for (unsigned int c = 0; c < 2; ++c)
@@ -158,7 +159,8 @@ namespace cycloid
                                const double       value,
                                const std::string &label)
     {
-      AssertThrow(dt > 0, dealii::ExcMessage("Transient/Time step must be > 0"));
+      AssertThrow(dt > 0,
+                  dealii::ExcMessage("Transient/Time step must be > 0"));
       auto       &el    = contact.elasticity_problem();
       const auto &owned = el.locally_owned_dofs();
       const auto  ghost = [&](const Vector &x) {
@@ -167,14 +169,15 @@ namespace cycloid
         return g;
       };
       Vector un(owned, comm), vn(owned, comm), an(owned, comm);
-      un = u;
-      vn = v;
-      an = a;
-      const double aR = settings.rayleigh_mass, bR = settings.rayleigh_stiffness;
+      un              = u;
+      vn              = v;
+      an              = a;
+      const double aR = settings.rayleigh_mass,
+                   bR = settings.rayleigh_stiffness;
 
       StepReport   report;
       unsigned int projection_linear = 0;
-      const double Q_old = totals.state.reaction;
+      const double Q_old             = totals.state.reaction;
       Vector       u_new(owned, comm), v_new(owned, comm), a_new(owned, comm);
       if (settings.scheme == Scheme::contact_stabilised)
         {
@@ -201,8 +204,8 @@ namespace cycloid
           gv                     = dealii::Utilities::MPI::sum(gv, comm);
           gg                     = dealii::Utilities::MPI::sum(gg, comm);
           const double beta_pred = beta + (gg > 0 ? dt * gv / gg : 0.);
-          const auto p = contact.solve_displacement(beta_pred,
-                                                    label + " (projection)");
+          const auto   p =
+            contact.solve_displacement(beta_pred, label + " (projection)");
           report.iterations += p.iterations;
           projection_linear = p.linear_iterations;
           Vector tilde(owned, comm);
@@ -310,9 +313,9 @@ namespace cycloid
           const auto   e  = el.energies(gm, gm);
           totals.dissipated += dt * (2. * bR * e.first + 2. * aR * e.second);
         }
-      u = ghost(u_new);
-      v = ghost(v_new);
-      a = ghost(a_new);
+      u              = ghost(u_new);
+      v              = ghost(v_new);
+      a              = ghost(a_new);
       const auto e   = el.energies(u, v);
       totals.elastic = e.first;
       totals.kinetic = e.second;
@@ -457,10 +460,10 @@ namespace cycloid
       const auto                                n_active = read_count();
       for (std::uint64_t k = 0; k < n_active; ++k)
         active.insert(read_count());
-      AssertThrow(in,
-                  dealii::ExcMessage("checkpoint: the file is truncated."));
-      contact.initialise_active_set(
-        [&](const contact::SlaveNode<dim> &s) { return active.count(s.dofs[0]) > 0; });
+      AssertThrow(in, dealii::ExcMessage("checkpoint: the file is truncated."));
+      contact.initialise_active_set([&](const contact::SlaveNode<dim> &s) {
+        return active.count(s.dofs[0]) > 0;
+      });
     }
 
 

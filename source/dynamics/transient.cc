@@ -1,7 +1,9 @@
 #include <deal.II/base/exceptions.h>
+
 #include <deal.II/base/hdf5.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/numbers.h>
+
 #include <deal.II/lac/full_matrix.h>
 
 #include <cycloid/dynamics/transient.h>
@@ -72,12 +74,11 @@ namespace cycloid
     template <int dim>
     Transient<dim>::Transient(const parameters::AllParameters &parameters,
                               const MPI_Comm                   comm)
-      : contact::QuasiStatic<dim>(
-          parameters,
-          parameters.loading.crank_angle_deg * deg,
-          comm,
-          parameters.transient.crank_speed * deg *
-            parameters.transient.end_time)
+      : contact::QuasiStatic<dim>(parameters,
+                                  parameters.loading.crank_angle_deg * deg,
+                                  comm,
+                                  parameters.transient.crank_speed * deg *
+                                    parameters.transient.end_time)
       , psi0(parameters.loading.crank_angle_deg * deg)
     {
       const auto &t = this->prm.transient;
@@ -99,8 +100,8 @@ namespace cycloid
       settings.spectral_radius    = t.spectral_radius;
       settings.rayleigh_mass      = t.rayleigh_mass;
       settings.rayleigh_stiffness = t.rayleigh_stiffness;
-      dynamics = std::make_unique<ContactDynamics<dim>>(*this->contact,
-                                                        settings);
+      dynamics =
+        std::make_unique<ContactDynamics<dim>>(*this->contact, settings);
     }
 
 
@@ -150,11 +151,11 @@ namespace cycloid
     void
     Transient<dim>::run()
     {
-      const auto        &t    = this->prm.transient;
-      const auto        &dir  = this->prm.run.output_directory;
-      const bool         root = dealii::Utilities::MPI::this_mpi_process(
-                          this->comm) == 0;
-      const double       dt   = t.time_step;
+      const auto &t   = this->prm.transient;
+      const auto &dir = this->prm.run.output_directory;
+      const bool  root =
+        dealii::Utilities::MPI::this_mpi_process(this->comm) == 0;
+      const double       dt = t.time_step;
       const unsigned int n_steps =
         static_cast<unsigned int>(std::llround(t.end_time / dt));
       const bool         rotation = this->prm.loading.rotation_control;
@@ -207,17 +208,17 @@ namespace cycloid
           const double psi_now    = psi0 + t.crank_speed * deg * time;
           if (t.crank_speed != 0.)
             place_discs(psi_now);
-          const double value = load_at(time);
+          const double       value = load_at(time);
           std::ostringstream label;
           label << "step " << step << " (t = " << time << " s, crank angle "
                 << psi_now / deg << " deg)";
           StepReport report;
           {
             dealii::TimerOutput::Scope scope(this->timer, "time step");
-            report = rotation ?
-                       dynamics->step(dt, false, value, label.str()) :
-                       dynamics->step(dt, true, value * 1e3 / scale,
-                                      label.str());
+            report =
+              rotation ?
+                dynamics->step(dt, false, value, label.str()) :
+                dynamics->step(dt, true, value * 1e3 / scale, label.str());
           }
           const double torque =
             rotation ? report.state.reaction * scale * 1e-3 : value;
@@ -225,13 +226,13 @@ namespace cycloid
           postprocess::StiffnessRow             row;
           std::vector<postprocess::PinForceRow> pins;
           this->pin_forces(torque, report.state, row, pins);
-          row.step       = step;
-          row.crank_deg  = psi_now / deg;
-          row.k_tangent  = std::numeric_limits<double>::quiet_NaN();
+          row.step              = step;
+          row.crank_deg         = psi_now / deg;
+          row.k_tangent         = std::numeric_limits<double>::quiet_NaN();
           row.iterations        = report.iterations;
           row.linear_iterations = report.state.linear_iterations;
           row.peak_memory_MB    = postprocess::peak_memory_MB(this->comm);
-          row.wall_s     = std::chrono::duration<double>(
+          row.wall_s            = std::chrono::duration<double>(
                          std::chrono::steady_clock::now() - step_start)
                          .count();
           if (step == 1 && !t.resume)
@@ -250,9 +251,8 @@ namespace cycloid
                      << report.elastic * J << ',' << external << ','
                      << report.iterations << ',' << row.crank_deg << ','
                      << torque << ',' << report.state.beta << ','
-                     << report.bore_work * J << ','
-                     << report.contact_work * J << ','
-                     << report.dissipated * J << ',' << balance << ','
+                     << report.bore_work * J << ',' << report.contact_work * J
+                     << ',' << report.dissipated * J << ',' << balance << ','
                      << relative << ',' << report.max_penetration * 1e3 << ','
                      << row.wall_s << '\n';
               energy.flush();
@@ -276,13 +276,11 @@ namespace cycloid
                           << 100. * relative << " % of the work at step "
                           << step << std::endl;
             }
-          AssertThrow(std::abs(relative) <= t.max_energy_error ||
-                        external <= 0,
+          AssertThrow(std::abs(relative) <= t.max_energy_error || external <= 0,
                       dealii::ExcMessage(
                         "transient: the energy balance error reached " +
-                        std::to_string(100. * relative) +
-                        " % of the work at " + label.str() +
-                        " (Transient/Maximum energy error " +
+                        std::to_string(100. * relative) + " % of the work at " +
+                        label.str() + " (Transient/Maximum energy error " +
                         std::to_string(100. * t.max_energy_error) +
                         " %). The scheme '" + t.scheme +
                         "' is unstable at contact here (chatter); use Scheme "
@@ -320,14 +318,13 @@ namespace cycloid
               const double elapsed = std::chrono::duration<double>(
                                        std::chrono::steady_clock::now() - start)
                                        .count();
-              const double remaining =
-                elapsed / (step - first) * (last - step);
+              const double remaining = elapsed / (step - first) * (last - step);
               this->pcout << "  step " << step << "/" << n_steps << ": t "
-                          << time << " s, crank " << row.crank_deg
-                          << " deg, T " << torque << " N m, beta "
-                          << report.state.beta << " rad, pins "
-                          << row.pins_in_contact << ", iterations "
-                          << report.iterations << ", E_kin+E_el "
+                          << time << " s, crank " << row.crank_deg << " deg, T "
+                          << torque << " N m, beta " << report.state.beta
+                          << " rad, pins " << row.pins_in_contact
+                          << ", iterations " << report.iterations
+                          << ", E_kin+E_el "
                           << (report.kinetic + report.elastic) * J
                           << " J, balance error " << balance << " J, "
                           << elapsed << " s elapsed, ~" << remaining
@@ -349,15 +346,15 @@ namespace cycloid
                                      const double       time) const
     {
       dealii::TimerOutput::Scope scope(this->timer, "checkpoint");
-      const auto        &dir = this->prm.run.output_directory;
-      const unsigned int rank =
+      const auto                &dir = this->prm.run.output_directory;
+      const unsigned int         rank =
         dealii::Utilities::MPI::this_mpi_process(this->comm);
       const unsigned int n_ranks =
         dealii::Utilities::MPI::n_mpi_processes(this->comm);
       const std::string name =
         dir + "/checkpoint.rank-" + std::to_string(rank) + ".bin";
       {
-        std::ofstream out(name + ".tmp", std::ios::binary);
+        std::ofstream       out(name + ".tmp", std::ios::binary);
         const std::uint64_t header[3] = {step, n_ranks, rank};
         out.write(reinterpret_cast<const char *>(header), sizeof(header));
         out.write(reinterpret_cast<const char *>(&time), sizeof(double));
@@ -381,7 +378,8 @@ namespace cycloid
             const std::uint64_t n = size_of(dir + "/" + f);
             out.write(reinterpret_cast<const char *>(&n), sizeof(n));
           }
-        AssertThrow(out, dealii::ExcMessage("checkpoint: cannot write " + name));
+        AssertThrow(out,
+                    dealii::ExcMessage("checkpoint: cannot write " + name));
       }
       // All ranks done before any file replaces the previous checkpoint.
       dealii::Utilities::MPI::sum(1, this->comm);
@@ -434,10 +432,8 @@ namespace cycloid
       const unsigned int every = this->prm.transient.output_interval;
       for (unsigned int s = 1; s <= step && every > 0; ++s)
         if (s % every == 0)
-          records.emplace_back(s,
-                               "solution-" +
-                                 dealii::Utilities::int_to_string(s, 4) +
-                                 ".pvtu");
+          records.emplace_back(
+            s, "solution-" + dealii::Utilities::int_to_string(s, 4) + ".pvtu");
       std::uint64_t sizes[3];
       in.read(reinterpret_cast<char *>(sizes), sizeof(sizes));
       AssertThrow(in,
@@ -471,13 +467,15 @@ namespace cycloid
       dealii::TimerOutput::Scope scope(this->timer, "hdf5");
       if (dealii::Utilities::MPI::this_mpi_process(this->comm) != 0)
         return;
-      const auto &dir = this->prm.run.output_directory;
-      const auto &h   = history;
-      const unsigned int n  = h.time.size();
-      const unsigned int np = this->prm.scene.n_discs * this->prm.geometry.n_pins;
-      const std::string  tmp = dir + "/transient.h5.tmp";
+      const auto        &dir = this->prm.run.output_directory;
+      const auto        &h   = history;
+      const unsigned int n   = h.time.size();
+      const unsigned int np =
+        this->prm.scene.n_discs * this->prm.geometry.n_pins;
+      const std::string tmp = dir + "/transient.h5.tmp";
       {
-        dealii::HDF5::File file(tmp, dealii::HDF5::File::FileAccessMode::create);
+        dealii::HDF5::File file(tmp,
+                                dealii::HDF5::File::FileAccessMode::create);
         file.set_attribute("scheme", this->prm.transient.scheme);
         file.set_attribute("time_step_s", this->prm.transient.time_step);
         file.set_attribute("crank_speed_deg_per_s",

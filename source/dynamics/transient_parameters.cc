@@ -47,11 +47,12 @@ namespace cycloid
                           "Crank (input) speed [deg/s]; the discs are placed "
                           "kinematically at the crank angle of each step "
                           "(9000 deg/s = 1500 rpm). 0: the discs stay.");
-        prm.declare_entry("Ramp time",
-                          "2e-4",
-                          Double(0., 1e3),
-                          "The torque rises as T (1 - cos(pi t / t_r)) / 2 over "
-                          "this time [s], then stays; 0: applied at once.");
+        prm.declare_entry(
+          "Ramp time",
+          "2e-4",
+          Double(0., 1e3),
+          "The torque rises as T (1 - cos(pi t / t_r)) / 2 over "
+          "this time [s], then stays; 0: applied at once.");
         prm.declare_entry("Rayleigh mass damping",
                           "0",
                           Double(0., 1e9),
@@ -83,11 +84,12 @@ namespace cycloid
           "exceeds this fraction of the work W done on the stage (plain "
           "Newmark chattering at contact gains energy) [-]; a warning is "
           "printed from 5 %.");
-        prm.declare_entry("Stop after step",
-                          "0",
-                          Integer(0),
-                          "End the run after this step (0: run to End time); "
-                          "with a checkpoint, emulates an interrupted run [-].");
+        prm.declare_entry(
+          "Stop after step",
+          "0",
+          Integer(0),
+          "End the run after this step (0: run to End time); "
+          "with a checkpoint, emulates an interrupted run [-].");
       }
       prm.leave_subsection();
     }

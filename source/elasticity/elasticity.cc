@@ -1,6 +1,6 @@
 #include <deal.II/base/exceptions.h>
-#include <deal.II/base/mpi.h>
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/dofs/dof_tools.h>
@@ -165,8 +165,7 @@ namespace cycloid
       const bool has_mass_load      = dynamic.mass_load.size() > 0;
       const bool has_stiffness_load = dynamic.stiffness_load.size() > 0;
       dealii::FullMatrix<double> cell_mass(dofs_per_cell, dofs_per_cell);
-      dealii::Vector<double>     cell_load(dofs_per_cell),
-        cell_w(dofs_per_cell);
+      dealii::Vector<double>    cell_load(dofs_per_cell), cell_w(dofs_per_cell);
       std::vector<unsigned int> comp_of(dofs_per_cell);
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
         comp_of[i] = fe.system_to_component_index(i).first;
@@ -334,12 +333,12 @@ namespace cycloid
       std::vector<dealii::Tensor<1, dim>> value(quadrature.size()),
         value_w(quadrature.size());
       // f = s_K K u + s_M M u - (M w_M + K w_K), or K u.
-      const double s_K    = effective ? dynamic.stiffness : 1.;
-      const double s_M    = effective ? dynamic.mass : 0.;
-      const bool   load_M = effective && with_load &&
-                          dynamic.mass_load.size() > 0;
-      const bool load_K = effective && with_load &&
-                          dynamic.stiffness_load.size() > 0;
+      const double s_K = effective ? dynamic.stiffness : 1.;
+      const double s_M = effective ? dynamic.mass : 0.;
+      const bool   load_M =
+        effective && with_load && dynamic.mass_load.size() > 0;
+      const bool load_K =
+        effective && with_load && dynamic.stiffness_load.size() > 0;
       for (const auto &cell : dofs.active_cell_iterators())
         {
           if (!cell->is_locally_owned())
@@ -366,12 +365,11 @@ namespace cycloid
             {
               fe_values[disp].get_function_values(u, value);
               if (load_M)
-                fe_values[disp].get_function_values(dynamic.mass_load,
-                                                    value_w);
+                fe_values[disp].get_function_values(dynamic.mass_load, value_w);
               for (unsigned int q = 0; q < value.size(); ++q)
-                value[q] = rho * (s_M * value[q] -
-                                  (load_M ? value_w[q] :
-                                            dealii::Tensor<1, dim>()));
+                value[q] =
+                  rho * (s_M * value[q] -
+                         (load_M ? value_w[q] : dealii::Tensor<1, dim>()));
             }
           cell_f = 0;
           for (const unsigned int q : fe_values.quadrature_point_indices())
@@ -382,8 +380,7 @@ namespace cycloid
                 2 * mu * strain[q];
               for (unsigned int i = 0; i < n; ++i)
                 {
-                  double v =
-                    sigma * fe_values[disp].symmetric_gradient(i, q);
+                  double v = sigma * fe_values[disp].symmetric_gradient(i, q);
                   if (inertia)
                     v += value[q] * fe_values[disp].value(i, q);
                   cell_f(i) += v * fe_values.JxW(q);
@@ -672,8 +669,7 @@ namespace cycloid
     {
       dealii::TrilinosWrappers::MPI::Vector r(locally_owned, comm),
         f(locally_owned, comm);
-      assemble_internal_forces(
-        u, f, &constraint_sets.at(k), &r, true, k == 0);
+      assemble_internal_forces(u, f, &constraint_sets.at(k), &r, true, k == 0);
       // Reference: the forces of the operator alone (A u); with a history
       // load, A u - b vanishes away from contacts and supports (a free
       // flight), so it cannot be the reference.

@@ -475,10 +475,10 @@ namespace cycloid
 
         // Size field.
         SizeField field(m);
-        field.points      =
+        field.points =
           contact_points_along(geo_data, prm.scene.n_discs, psi, sweep);
-        field.ring_radius = geo_data.root_radius() - 2. * g.pin_radius;
-        field.pin_radius  = g.pin_radius;
+        field.ring_radius       = geo_data.root_radius() - 2. * g.pin_radius;
+        field.pin_radius        = g.pin_radius;
         field.pin_circle_radius = rp;
         for (unsigned int d = 0; d < prm.scene.n_discs; ++d)
           {
@@ -1103,10 +1103,11 @@ namespace cycloid
 
       if (prm.mesh.global_refinements > 0)
         tria.refine_global(prm.mesh.global_refinements);
-      refine_near_contacts(contact_points_along(geo, prm.scene.n_discs, psi, sweep),
-                           prm.mesh.contact_refinement_radius,
-                           prm.mesh.contact_refinements,
-                           tria);
+      refine_near_contacts(
+        contact_points_along(geo, prm.scene.n_discs, psi, sweep),
+        prm.mesh.contact_refinement_radius,
+        prm.mesh.contact_refinements,
+        tria);
     }
 
 

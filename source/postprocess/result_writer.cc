@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
@@ -86,11 +87,11 @@ namespace cycloid
     write_pin_force_row(std::ostream &out, const PinForceRow &p)
     {
       out << p.step << ',' << p.crank_deg << ',' << p.disc << ',' << p.pin
-          << ',' << p.fx_N << ',' << p.fy_N << ',' << p.fn_N << ','
-          << p.arm_mm << ',' << p.clearance_um << ',' << p.phase_deg << ','
-          << p.approach_um << ',' << p.pair_stiffness_N_per_mm << ','
-          << p.contact_x_mm << ',' << p.contact_y_mm << ','
-          << p.contact_halfwidth_um << ',' << p.hertz_halfwidth_um << '\n';
+          << ',' << p.fx_N << ',' << p.fy_N << ',' << p.fn_N << ',' << p.arm_mm
+          << ',' << p.clearance_um << ',' << p.phase_deg << ',' << p.approach_um
+          << ',' << p.pair_stiffness_N_per_mm << ',' << p.contact_x_mm << ','
+          << p.contact_y_mm << ',' << p.contact_halfwidth_um << ','
+          << p.hertz_halfwidth_um << '\n';
     }
 
 

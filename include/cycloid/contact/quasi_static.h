@@ -53,7 +53,8 @@ namespace cycloid
     public:
       /** Build the mesh of the scene at crank angle @p psi [rad] and the
        * contact problem on it; with @p sweep != 0 [rad] the mesh is refined
-       * at the contacts of crank angles psi ... psi + sweep (transient runs). */
+       * at the contacts of crank angles psi ... psi + sweep (transient runs).
+       */
       QuasiStatic(const parameters::AllParameters &parameters,
                   const double                     psi,
                   const MPI_Comm                   comm,

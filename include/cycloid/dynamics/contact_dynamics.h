@@ -156,7 +156,7 @@ namespace cycloid
       dealii::TrilinosWrappers::MPI::Vector u, v, a;
       double                                beta = 0, beta_old = 0;
       double                                applied = 0;
-      double                                dt_old = 0;
+      double                                dt_old  = 0;
       StepReport                            totals;
       std::map<dealii::types::global_dof_index,
                std::pair<double, contact::SlaveNode<dim>>>

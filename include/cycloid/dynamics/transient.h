@@ -79,10 +79,10 @@ namespace cycloid
       void
       write_hdf5() const;
 
-      const double                           psi0;
-      std::unique_ptr<ContactDynamics<dim>>  dynamics;
-      History                                history;
-      double                                 initial_energy = 0;
+      const double                                psi0;
+      std::unique_ptr<ContactDynamics<dim>>       dynamics;
+      History                                     history;
+      double                                      initial_energy = 0;
       std::vector<std::pair<double, std::string>> records;
     };
   } // namespace dynamics

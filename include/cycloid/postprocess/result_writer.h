@@ -1,12 +1,12 @@
 #ifndef cycloid_postprocess_result_writer_h
 #define cycloid_postprocess_result_writer_h
 
-#include <mpi.h>
-
 #include <fstream>
 #include <ostream>
 #include <string>
 #include <vector>
+
+#include <mpi.h>
 
 namespace cycloid
 {

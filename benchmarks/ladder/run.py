@@ -1,0 +1,679 @@
+#!/usr/bin/python3
+"""Scene ladder benchmark (issue #6): the seed case at the rated torque in
+every scene, each over a sequence of meshes; the reference stiffness, the
+error of every run against it and against its scene's finest mesh, the
+error-against-cost chart with its Pareto front, cost against DoFs, 1 vs 2 MPI
+ranks, and the seed's parameter study with the cheapest adequate FE scene.
+
+One command (about 40 min on 2 shared cores; --quick about 8 min):
+
+    /usr/bin/python3 benchmarks/ladder/run.py [--part analytic,2d,3d1,3d2,ranks,seed-study]
+        [--quick] [--exe build/cycloid-contact] [--out doc/ladder] [--analyse-only]
+
+Rated torque and normalisation
+  The stage torque is T = 1000 N m (the rated torque used throughout doc/).
+  The two-disc scenes (analytic 'Number of discs = 2', 3D two discs) carry T
+  with both discs at one rotation beta, each disc ~T/2. The one-disc scenes
+  (2D rigid pins, 2D elastic pins, 3D one disc, and the analytic one-disc
+  check) are therefore run at T/2 = 500 N m, the share of one disc, and
+  reported as the stage stiffness 2 K_disc(T/2) (= T / beta of a stage whose
+  discs both behave like the modelled one). The largest pin force is per
+  (disc, pin) pair in every scene, so it compares directly. The CSV keeps
+  the program's raw K (column K_*_raw) next to the stage value.
+
+Parts (every FE run: Run = quasi-static, crank angle 0, unmodified seed profile
+(zero clearance), --ranks MPI ranks (default 2), no VTU output):
+  analytic    both pair models (seed, line-contact), two discs at T and one
+              disc at T/2;
+  2d          2D plane strain one disc, rigid pins and elastic pins (Pin
+              support = axis), Contact refinements 0..3 (elastic 0..4) and
+              cr1 + 2 adaptive cycles;
+  3d1         3D one-disc slab (pins on their axes);
+  3d2         3D two discs, elastic pins seated in the housing; plus the
+              runs of doc/contact-speed-3d.csv (marked source=contact-speed,
+              not rerun);
+  ranks       2D elastic cr1, cr3 and cr1+ad2 on 1 rank, compared with the
+              2-rank runs of part 2d (run part 2d first);
+  seed-study  the pin-radius and eccentricity sweeps of the seed's Table 3
+              with 2D elastic pins, cr1 + 2 adaptive cycles (the cheapest
+              mesh within 0.1 % of the finest, doc/contact-speed.md), against
+              both analytic models (one disc at T/2, same crank angle).
+
+Every FE run is the whole `mpirun -np R cycloid-contact case.prm`, timed from
+outside (meshing, set-up, solve included). Re-running a part replaces its rows
+in doc/ladder/ladder.csv and keeps the others; --analyse-only rebuilds the
+figures and the summary from the CSVs.
+
+Outputs in --out (doc/ladder): ladder.csv, ranks.csv, seed-study-fe.csv,
+error-vs-time.png, cost-vs-dofs.png, seed-study-fe.png, summary.txt.
+"""
+import argparse
+import csv
+import math
+import os
+import re
+import signal
+import subprocess
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+T_STAGE = 1000.0
+RP_SEED = 2.2 * 40 / 0.675  # 130.370 mm, the pin circle held fixed in the e sweep
+
+SCENES = ["analytic seed", "analytic line-contact", "2D rigid pins", "2D elastic pins",
+          "3D one disc", "3D two discs"]
+COLOURS = dict(zip(SCENES, ["C7", "C8", "C1", "C0", "C2", "C3"]))
+
+
+def c3(**kw):
+    d = {"Contact element size": 1, "Flank element size": 1.5, "Pin element size": 1.5,
+         "Coarse element size": 10, "Axial layers per disc": 1, "Contact refinements": 0}
+    d.update({k.replace("_", " ").capitalize(): v for k, v in kw.items()})
+    return d
+
+
+CR = lambda n, ad=0: {"Contact refinements": n, **({"Adaptive refinement cycles": ad} if ad else {})}
+TWO_D_RIGID = [(f"cr{n}", CR(n)) for n in range(0, 4)] + [("cr1+ad2", CR(1, 2))]
+TWO_D_ELASTIC = [(f"cr{n}", CR(n)) for n in range(0, 5)] + [("cr1+ad2", CR(1, 2))]
+TWO_D_QUICK = ["cr0", "cr1", "cr1+ad2"]
+THREE_D1 = [("c1 ax1 cr1", c3(contact_refinements=1)),
+            ("c1 ax1 cr1+ad1", c3(contact_refinements=1, adaptive_refinement_cycles=1)),
+            ("c0.5 ax1 cr2", c3(contact_element_size=0.5, contact_refinements=2))]
+THREE_D1_QUICK = ["c1 ax1 cr1"]
+# The richest scene: a nested sequence at the contacts (each adaptive cycle
+# halves the cells next to the active contact nodes) for Richardson.
+THREE_D2 = [("c1 ax1 cr1", c3(contact_refinements=1)),
+            ("c1 ax1 cr1+ad1", c3(contact_refinements=1, adaptive_refinement_cycles=1)),
+            ("c1 ax1 cr1+ad2", c3(contact_refinements=1, adaptive_refinement_cycles=2)),
+            ("c1 ax1 cr1+ad3", c3(contact_refinements=1, adaptive_refinement_cycles=3))]
+THREE_D2_QUICK = ["c1 ax1 cr1"]
+RANKS = ["cr1", "cr3", "cr1+ad2"]
+RANKS_QUICK = ["cr1"]
+SEED_MESH = ("cr1+ad2", CR(1, 2))
+PIN_RADII = [2.5, 2.75, 3.0, 3.25, 3.5]
+ECCENTRICITIES = [1.8, 2.0, 2.2, 2.4, 2.6]
+PIN_RADII_QUICK = [2.5, 3.0, 3.5]
+ECC_QUICK = [1.8, 2.2, 2.6]
+
+
+# ---------------------------------------------------------------- running
+def prm_text(out, run, dim=2, discs=1, pins="elastic", support="axis", torque=T_STAGE, mesh=None,
+             geometry=None, model=None):
+    L = [f"set Run = {run}", f"set Output directory = {out}"]
+    if run != "analytic":
+        L.append("set Write solution = false")
+    if geometry:
+        L += ["subsection Geometry"] + [f"  set {k} = {v}" for k, v in geometry.items()] + ["end"]
+    L += ["subsection Scene", f"  set Dimension = {dim}", f"  set Number of discs = {discs}",
+          f"  set Pins = {pins}", f"  set Pin support = {support}", "end",
+          "subsection Loading", f"  set Torque = {torque:g}", "  set Crank angle = 0", "end"]
+    if model:
+        L += ["subsection Analytic", f"  set Pair stiffness model = {model}", "end"]
+    if mesh is not None:
+        L += ["subsection Mesh", "  set Contact refinement radius = 0.3"]
+        L += [f"  set {k} = {v}" for k, v in mesh.items()] + ["end"]
+    return "\n".join(L) + "\n"
+
+
+def run_one(args, work, tag, text, ranks=None, mpi=True):
+    """Run one prm; return (row dict from stiffness.csv or None, wall, status, log tail)."""
+    tag = re.sub(r"[^A-Za-z0-9.]+", "_", tag)
+    out = os.path.join(work, tag)
+    prm = out + ".prm"
+    with open(prm, "w") as f:
+        f.write(text.replace("__OUT__", out))
+    cmd = [args.exe, prm]
+    if mpi:
+        cmd = ["mpirun", "-np", str(ranks or args.ranks)] + cmd
+        if os.geteuid() == 0:
+            cmd.insert(1, "--allow-run-as-root")
+    load = os.getloadavg()[0]
+    t0 = time.monotonic()
+    with open(out + ".log", "w") as logf:
+        p = subprocess.Popen(cmd, stdout=logf, stderr=subprocess.STDOUT, start_new_session=True)
+        try:
+            rc = p.wait(timeout=args.timeout)
+            status = "ok" if rc == 0 else f"exit {rc}"
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGTERM)  # this mpirun's process group only
+            try:
+                p.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+            status = f"timeout {args.timeout:.0f} s"
+    wall = time.monotonic() - t0
+    path = os.path.join(out, "stiffness.csv")
+    row = None
+    if status == "ok" and os.path.exists(path):
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+        row = rows[-1] if rows else None
+    if row is None:
+        with open(out + ".log") as f:
+            tail = " | ".join(f.read().strip().splitlines()[-4:])
+        print(f"  !! {tag}: {status}: {tail}", flush=True)
+    return row, wall, status, load
+
+
+def fe_row(args, work, scene, label, ranks, text, per_disc, extra=None):
+    r, wall, status, load = run_one(args, work, f"{scene}_{label}_np{ranks}", text, ranks)
+    row = {"scene": scene, "mesh": label, "ranks": ranks, "source": "ladder", "status": status,
+           "wall_s": wall, "load_avg_at_start": load, "normalisation": "2 x one disc at T/2" if per_disc else "stage"}
+    row.update(extra or {})
+    if r:
+        f = 2.0 if per_disc else 1.0
+        row.update({"torque_Nm": float(r["torque_Nm"]), "dofs": int(r["dofs"]),
+                    "K_secant_raw": float(r["K_secant_Nm_per_rad"]),
+                    "K_tangent_raw": float(r["K_tangent_Nm_per_rad"]),
+                    "K_secant": f * float(r["K_secant_Nm_per_rad"]),
+                    "K_tangent": f * float(r["K_tangent_Nm_per_rad"]),
+                    "max_pin_force_N": float(r["max_pin_force_N"]),
+                    "pins_in_contact": int(r["pins_in_contact"]),
+                    "active_set_iterations": int(r["active_set_iterations"]),
+                    "linear_iterations": r.get("linear_iterations", ""),
+                    "peak_memory_MB": float(r.get("peak_memory_MB") or "nan"),
+                    "program_wall_s": float(r["wall_s"])})
+        print(f"  {scene:22s} {label:16s} np{ranks} dofs {row['dofs']:8d} K_sec {row['K_secant']:.5e} "
+              f"K_tan {row['K_tangent']:.5e} pins {row['pins_in_contact']:2d} it {row['active_set_iterations']:2d} "
+              f"Fmax {row['max_pin_force_N']:7.1f} N  wall {wall:7.1f} s  mem {row['peak_memory_MB']:.0f} MB  "
+              f"load {load:.1f}", flush=True)
+    return row
+
+
+def pick(lst, quick, args):
+    return [c for c in lst if not args.quick or c[0] in quick]
+
+
+def part_analytic(args, work):
+    rows = []
+    for model in ("seed", "line-contact"):
+        for discs, torque in ((2, T_STAGE), (1, T_STAGE / 2)):
+            text = prm_text("__OUT__", "analytic", discs=discs, torque=torque, model=model)
+            r, wall, status, load = run_one(args, work, f"analytic_{model}_{discs}", text, mpi=False)
+            f = 2.0 if discs == 1 else 1.0
+            row = {"scene": f"analytic {model}", "mesh": f"{discs} disc(s)", "ranks": 1, "source": "ladder",
+                   "status": status, "wall_s": wall, "load_avg_at_start": load,
+                   "normalisation": "2 x one disc at T/2" if discs == 1 else "stage"}
+            if r:
+                row.update({"torque_Nm": float(r["torque_Nm"]), "dofs": 0,
+                            "K_secant_raw": float(r["K_secant_Nm_per_rad"]),
+                            "K_tangent_raw": float(r["K_tangent_Nm_per_rad"]),
+                            "K_secant": f * float(r["K_secant_Nm_per_rad"]),
+                            "K_tangent": f * float(r["K_tangent_Nm_per_rad"]),
+                            "max_pin_force_N": float(r["max_pin_force_N"]),
+                            "pins_in_contact": int(r["pins_in_contact"]),
+                            "active_set_iterations": int(r["active_set_iterations"]),
+                            "peak_memory_MB": float(r.get("peak_memory_MB") or "nan"),
+                            "program_wall_s": float(r["wall_s"])})
+                print(f"  {row['scene']:22s} {row['mesh']:10s} K_sec {row['K_secant']:.5e} K_tan {row['K_tangent']:.5e} "
+                      f"pins {row['pins_in_contact']} Fmax {row['max_pin_force_N']:.1f} N wall {wall:.2f} s "
+                      f"(solve {row['program_wall_s'] * 1e3:.2f} ms)", flush=True)
+            rows.append(row)
+    return rows
+
+
+def part_2d(args, work):
+    rows = []
+    for pins, lst, scene in (("elastic", TWO_D_ELASTIC, "2D elastic pins"), ("rigid", TWO_D_RIGID, "2D rigid pins")):
+        for label, mesh in pick(lst, TWO_D_QUICK, args):
+            text = prm_text("__OUT__", "quasi-static", 2, 1, pins, "axis", T_STAGE / 2, mesh)
+            rows.append(fe_row(args, work, scene, label, args.ranks, text, True))
+    return rows
+
+
+def part_3d1(args, work):
+    return [fe_row(args, work, "3D one disc", label, args.ranks,
+                   prm_text("__OUT__", "quasi-static", 3, 1, "elastic", "axis", T_STAGE / 2, mesh), True)
+            for label, mesh in pick(THREE_D1, THREE_D1_QUICK, args)]
+
+
+def part_3d2(args, work):
+    return [fe_row(args, work, "3D two discs", label, args.ranks,
+                   prm_text("__OUT__", "quasi-static", 3, 2, "elastic", "housing", T_STAGE, mesh), False)
+            for label, mesh in pick(THREE_D2, THREE_D2_QUICK, args)]
+
+
+def part_ranks(args, work):
+    rows = []
+    meshes = dict(TWO_D_ELASTIC)
+    for label in (RANKS_QUICK if args.quick else RANKS):
+        text = prm_text("__OUT__", "quasi-static", 2, 1, "elastic", "axis", T_STAGE / 2, meshes[label])
+        rows.append(fe_row(args, work, "2D elastic pins", label, 1, text, True))
+    return rows
+
+
+def earlier_3d():
+    """The 3D two-disc runs of doc/contact-speed-3d.csv (1000 N m, 2 ranks, VTU output on)."""
+    rows = []
+    for r in read_csv(os.path.join(ROOT, "doc", "contact-speed-3d.csv")):
+        if r.get("part") != "3d" or r.get("status") != "ok":
+            continue
+        rows.append({"scene": "3D two discs", "mesh": r["case"], "ranks": 2, "source": "contact-speed",
+                     "status": "ok", "wall_s": r["total_wall_s"], "load_avg_at_start": r["load_avg_at_start"],
+                     "normalisation": "stage", "torque_Nm": r["torque_Nm"], "dofs": r["dofs"],
+                     "K_secant_raw": r["K_secant_Nm_per_rad"], "K_tangent_raw": r["K_tangent_Nm_per_rad"],
+                     "K_secant": r["K_secant_Nm_per_rad"], "K_tangent": r["K_tangent_Nm_per_rad"],
+                     "max_pin_force_N": r["max_pin_force_N"], "pins_in_contact": r["pins_in_contact"],
+                     "active_set_iterations": r["active_set_iterations"], "peak_memory_MB": "",
+                     "program_wall_s": r["state_wall_s"]})
+    return rows
+
+
+def part_seed_study(args, work):
+    """FE (2D elastic, cr1+ad2, one disc at T/2) and both analytic models over rrp and e."""
+    rows = []
+    rr = PIN_RADII_QUICK if args.quick else PIN_RADII
+    ee = ECC_QUICK if args.quick else ECCENTRICITIES
+    points = [("pin radius", v, {"Pin radius": v}) for v in rr]
+    points += [("eccentricity", v, {"Eccentricity": v, "Shortening coefficient": f"{v * 40 / RP_SEED:.9f}"})
+               for v in ee]
+    for sweep, v, geo in points:
+        base = {"sweep": sweep, "value": v}
+        for model in ("seed", "line-contact"):
+            text = prm_text("__OUT__", "analytic", discs=1, torque=T_STAGE / 2, model=model, geometry=geo)
+            r, wall, status, _ = run_one(args, work, f"ss_{sweep}_{v}_{model}", text, mpi=False)
+            row = dict(base, model=f"analytic {model}", status=status, wall_s=wall)
+            if r:
+                row.update({"K_secant": 2 * float(r["K_secant_Nm_per_rad"]),
+                            "K_tangent": 2 * float(r["K_tangent_Nm_per_rad"]),
+                            "max_pin_force_N": float(r["max_pin_force_N"]),
+                            "pins_in_contact": int(r["pins_in_contact"]), "dofs": 0})
+            rows.append(row)
+        if args.seed_study_fe:
+            text = prm_text("__OUT__", "quasi-static", 2, 1, "elastic", "axis", T_STAGE / 2, SEED_MESH[1], geometry=geo)
+            fr = fe_row(args, work, "2D elastic pins", f"{SEED_MESH[0]} {sweep} {v}", args.ranks, text, True)
+            row = dict(base, model=f"FE 2D elastic {SEED_MESH[0]}", status=fr["status"], wall_s=fr["wall_s"])
+            for k in ("K_secant", "K_tangent", "max_pin_force_N", "pins_in_contact", "dofs"):
+                row[k] = fr.get(k, "")
+            rows.append(row)
+        for r in rows[-3:]:
+            if r.get("K_secant", "") != "":
+                print(f"  seed-study {sweep} {v}: {r['model']:28s} K_sec {r['K_secant']:.4e} K_tan {r['K_tangent']:.4e} "
+                      f"pins {r['pins_in_contact']} Fmax {r['max_pin_force_N']:.0f}", flush=True)
+    return rows
+
+
+# ---------------------------------------------------------------- CSV helpers
+COLUMNS = ["scene", "mesh", "ranks", "source", "normalisation", "torque_Nm", "dofs", "K_secant", "K_tangent",
+           "K_secant_raw", "K_tangent_raw", "max_pin_force_N", "pins_in_contact", "active_set_iterations",
+           "linear_iterations", "wall_s", "program_wall_s", "peak_memory_MB", "load_avg_at_start",
+           "err_K_secant_pct", "err_K_tangent_pct", "err_Fmax_pct", "own_finest", "own_err_K_secant_pct",
+           "own_err_K_tangent_pct", "own_err_Fmax_pct", "pareto", "status"]
+SS_COLUMNS = ["sweep", "value", "model", "K_secant", "K_tangent", "max_pin_force_N", "pins_in_contact", "dofs",
+              "wall_s", "status"]
+
+
+def parse(v):
+    for t in (int, float):
+        try:
+            return t(v)
+        except (ValueError, TypeError):
+            pass
+    return v
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return [{k: parse(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def fmt(v):
+    if isinstance(v, float):
+        return "nan" if math.isnan(v) else f"{v:.6g}"
+    return v
+
+
+def write_csv(path, rows, cols):
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(cols)
+        for r in rows:
+            w.writerow([fmt(r.get(c, "")) for c in cols])
+    print("written", os.path.relpath(path, ROOT))
+
+
+def has_k(r):
+    return isinstance(r.get("K_secant"), float) or isinstance(r.get("K_secant"), int)
+
+
+# ---------------------------------------------------------------- analysis
+def richardson(coarse, mid, fine, ratio=2.0):
+    """Extrapolated value, observed order; None when the differences do not
+    shrink monotonically (not asymptotic)."""
+    d1, d2 = mid - coarse, fine - mid
+    if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
+        return None, None
+    p = math.log(abs(d1) / abs(d2)) / math.log(ratio)
+    return fine + d2 / (ratio ** p - 1.0), p
+
+
+def reference(rows, notes):
+    """Reference K (secant, tangent) and largest pin force from the richest
+    scene; returns (dict, description)."""
+    two = [r for r in rows if r["scene"] == "3D two discs" and has_k(r) and r["ranks"] == 2]
+    if not two:
+        return None
+    seq = [r for r in two if r["source"] == "ladder" and r["mesh"].startswith("c1 ax1 cr1")]
+    seq.sort(key=lambda r: r["dofs"])
+    finest = max(two, key=lambda r: r["dofs"])
+    ref = {"case": f"{finest['mesh']} ({finest['source']})"}
+    asym = True
+    for key in ("K_secant", "K_tangent", "max_pin_force_N"):
+        vals = [r[key] for r in seq]
+        ext = p = None
+        if len(vals) >= 3:
+            ext, p = richardson(*vals[-3:])
+        if ext is not None and 0.5 <= p <= 4.0:
+            ref[key] = ext
+            ref[key + "_err_pct"] = 100 * abs(vals[-1] - ext) / abs(ext)
+            notes.append(f"reference {key}: Richardson from {[r['mesh'] for r in seq[-3:]]} = {ext:.5g} "
+                         f"(order {p:.2f}); finest of that sequence {100 * (vals[-1] - ext) / ext:+.2f} % from it")
+        else:
+            asym = False
+            # Not asymptotic: the finest run, its error estimated from the
+            # spread of the scene's last meshes (no pretence of an order).
+            tail = sorted(two, key=lambda r: r["dofs"])[-3:]
+            spread = max(abs(r[key] - finest[key]) for r in tail[:-1]) if len(tail) > 1 else float("nan")
+            ref[key] = finest[key]
+            ref[key + "_err_pct"] = 100 * spread / abs(finest[key])
+            why = (f"sequence {[r['mesh'] for r in seq[-3:]]}: {', '.join(f'{v:.4g}' for v in vals[-3:])}"
+                   if len(vals) >= 3 else f"only {len(vals)} nested meshes")
+            notes.append(f"reference {key}: NOT asymptotic ({why}{'' if ext is None else f', order {p:.2f}'}); "
+                         f"using the finest run {ref['case']} = {finest[key]:.5g}, error estimate "
+                         f">= {ref[key + '_err_pct']:.1f} % (largest change among the 3 finest meshes)")
+    ref["asymptotic"] = asym
+    return ref
+
+
+def add_errors(rows, ref):
+    by_scene = {}
+    for r in rows:
+        if has_k(r) and r["ranks"] == 2 or (has_k(r) and r["scene"].startswith("analytic")):
+            by_scene.setdefault(r["scene"], []).append(r)
+    finest = {s: max(rr, key=lambda r: (r["dofs"], r["wall_s"])) for s, rr in by_scene.items()}
+    for r in rows:
+        if not has_k(r):
+            continue
+        if ref:
+            for key, e in (("K_secant", "err_K_secant_pct"), ("K_tangent", "err_K_tangent_pct"),
+                           ("max_pin_force_N", "err_Fmax_pct")):
+                r[e] = 100 * (r[key] - ref[key]) / ref[key]
+        f = finest.get(r["scene"])
+        if f and not r["scene"].startswith("analytic"):
+            r["own_finest"] = f["mesh"]
+            for key, e in (("K_secant", "own_err_K_secant_pct"), ("K_tangent", "own_err_K_tangent_pct"),
+                           ("max_pin_force_N", "own_err_Fmax_pct")):
+                r[e] = 100 * (r[key] - f[key]) / f[key]
+
+
+def chart_points(rows):
+    """(scene, mesh, wall, errK, errF, row) per run on 2 ranks (analytic: 1 process)."""
+    pts = []
+    for r in rows:
+        if not has_k(r) or r.get("err_K_secant_pct", "") == "":
+            continue
+        if r["scene"].startswith("analytic") and r["normalisation"] != "stage":
+            continue
+        if not r["scene"].startswith("analytic") and r["ranks"] != 2:
+            continue
+        ek = max(abs(r["err_K_secant_pct"]), abs(r["err_K_tangent_pct"]))
+        pts.append((r["scene"], r["mesh"], float(r["wall_s"]), ek, abs(r["err_Fmax_pct"]), r))
+    return pts
+
+
+def pareto(pts, idx):
+    """Indices of the points not dominated in (wall, error[idx])."""
+    order = sorted(range(len(pts)), key=lambda i: (pts[i][2], pts[i][idx]))
+    front, best = [], float("inf")
+    for i in order:
+        if pts[i][idx] < best:
+            front.append(i)
+            best = pts[i][idx]
+    return front
+
+
+def plot_error(path, pts, ref):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+    for ax, idx, what in ((axes[0], 3, "K (max of secant, tangent)"), (axes[1], 4, "largest pin force")):
+        seen = set()
+        for s, m, w, ek, ef, r in pts:
+            e = max((ek, ef)[idx - 3], 1e-2)
+            mk = "s" if r["source"] == "contact-speed" else ("^" if "+ad" in m else "o")
+            ax.loglog(w, e, mk, color=COLOURS.get(s, "k"), mfc="none" if r["source"] == "contact-speed" else None,
+                      ms=6, label=s if s not in seen else None)
+            seen.add(s)
+            ax.annotate(m.replace(" disc(s)", "d"), (w, e), textcoords="offset points", xytext=(3, 2),
+                        fontsize=5, color=COLOURS.get(s, "k"))
+        front = pareto(pts, idx)
+        fx = [pts[i][2] for i in front]
+        fy = [max((pts[i][3], pts[i][4])[idx - 3], 1e-2) for i in front]
+        ax.step(fx, fy, where="post", color="k", lw=1.0, ls="-", alpha=0.6, label="Pareto front")
+        ax.plot(fx, fy, "o", ms=11, mfc="none", mec="k", alpha=0.6)
+        band = ref.get(("K_secant" if idx == 3 else "max_pin_force_N") + "_err_pct", float("nan"))
+        if band == band:
+            ax.axhspan(1e-2, band, color="0.85", zorder=0, label=f"reference uncertainty ({band:.1f} %)")
+        ax.set_xlabel("wall time [s] (whole mpirun on 2 ranks incl. meshing; analytic: whole command)")
+        ax.set_ylabel(f"|error| of {what} vs reference [%]")
+        ax.grid(True, which="both", lw=0.3)
+        ax.legend(fontsize=6, loc="best")
+    fig.suptitle(f"Scene ladder, seed case, stage torque {T_STAGE:g} N m (one-disc scenes: 2 x one disc at "
+                 f"{T_STAGE / 2:g} N m); reference {ref['case']}"
+                 f"{'' if ref['asymptotic'] else ' (finest, NOT asymptotic)'};\n"
+                 "filled: this benchmark, open squares: doc/contact-speed-3d.csv; triangles: adaptive; floor 0.01 %",
+                 fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    print("written", os.path.relpath(path, ROOT))
+
+
+def fit_power(x, y):
+    lx = [math.log(v) for v in x]
+    ly = [math.log(v) for v in y]
+    n = len(lx)
+    mx, my = sum(lx) / n, sum(ly) / n
+    sxx = sum((a - mx) ** 2 for a in lx)
+    if sxx == 0:
+        return None, None
+    b = sum((a - mx) * (c - my) for a, c in zip(lx, ly)) / sxx
+    return b, math.exp(my - b * mx)
+
+
+def plot_cost(path, rows, notes):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.5, 4.6))
+    fe = [r for r in rows if has_k(r) and not r["scene"].startswith("analytic") and r["ranks"] == 2
+          and isinstance(r.get("dofs"), int) and r["dofs"] > 0]
+    groups = {}
+    for r in fe:
+        fam = "adaptive" if "+ad" in r["mesh"] else "a-priori"
+        groups.setdefault((r["scene"], fam), []).append(r)
+        ax.loglog(r["dofs"], r["wall_s"], "^" if fam == "adaptive" else ("s" if r["source"] != "ladder" else "o"),
+                  color=COLOURS[r["scene"]], mfc="none" if r["source"] != "ladder" else None, ms=5)
+    for s in SCENES[2:]:
+        rr = [r for r in fe if r["scene"] == s and "+ad" not in r["mesh"]]
+        if len(rr) >= 2:
+            b, a = fit_power([r["dofs"] for r in rr], [r["wall_s"] for r in rr])
+            xs = sorted(r["dofs"] for r in rr)
+            ax.plot(xs, [a * x ** b for x in xs], "-", color=COLOURS[s], lw=0.8, label=f"{s}: wall ~ DoFs^{b:.2f}")
+            notes.append(f"cost fit {s} (a-priori meshes, {len(rr)} runs): wall ~ DoFs^{b:.2f}")
+    b, a = fit_power([r["dofs"] for r in fe], [r["wall_s"] for r in fe])
+    xs = [min(r["dofs"] for r in fe), max(r["dofs"] for r in fe)]
+    ax.plot(xs, [a * x ** b for x in xs], "k--", lw=1, label=f"all FE runs: wall ~ DoFs^{b:.2f}")
+    notes.append(f"cost fit all FE runs ({len(fe)}): wall ~ DoFs^{b:.2f}")
+    ax.set_xlabel("DoFs (final mesh)")
+    ax.set_ylabel("wall time [s] (2 ranks, incl. meshing)")
+    ax.set_title("Cost against DoFs (triangles adaptive, open squares doc/contact-speed-3d.csv)", fontsize=8)
+    ax.grid(True, which="both", lw=0.3)
+    ax.legend(fontsize=6)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    print("written", os.path.relpath(path, ROOT))
+
+
+def plot_seed_study(path, rows):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ax, sweep, xl in ((axes[0], "pin radius", "pin radius rrp [mm]"),
+                          (axes[1], "eccentricity", "eccentricity e [mm] (pin circle fixed, rp = 130.37 mm)")):
+        for model, st in (("analytic seed", "C7--"), ("analytic line-contact", "C8-"),
+                          (f"FE 2D elastic {SEED_MESH[0]}", "C0o-")):
+            rr = sorted((r for r in rows if r["sweep"] == sweep and r["model"] == model and has_k(r)),
+                        key=lambda r: r["value"])
+            if not rr:
+                continue
+            x = [r["value"] for r in rr]
+            ax.plot(x, [r["K_secant"] / 1e7 for r in rr], st, label=f"{model}, K_secant", ms=4)
+            if model.startswith("FE"):
+                ax.plot(x, [r["K_tangent"] / 1e7 for r in rr], "C0s:", mfc="none", label=f"{model}, K_tangent", ms=4)
+        ax.set_xlabel(xl)
+        ax.set_ylabel("stage stiffness [1e7 N m/rad]")
+        ax.grid(True, lw=0.3)
+        ax.legend(fontsize=6)
+    fig.suptitle(f"Seed's Table 3 sweeps at {T_STAGE:g} N m (2 x one disc at {T_STAGE / 2:g} N m, crank angle 0, "
+                 "unmodified profile)", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    print("written", os.path.relpath(path, ROOT))
+
+
+def analyse(args):
+    notes = []
+    rows = read_csv(os.path.join(args.out, "ladder.csv"))
+    rows = [r for r in rows if r.get("source") != "contact-speed"] + earlier_3d()
+    ref = reference(rows, notes)
+    add_errors(rows, ref)
+    pts = chart_points(rows) if ref else []
+    for idx, what in ((3, "K"), (4, "Fmax")):
+        for i in pareto(pts, idx) if pts else []:
+            s, m, w, ek, ef, r = pts[i]
+            r["pareto"] = (r.get("pareto", "") + f" {what}").strip()
+    order = {s: i for i, s in enumerate(SCENES)}
+    rows.sort(key=lambda r: (order.get(r["scene"], 9), r["source"] != "ladder", r["ranks"],
+                             r["dofs"] if isinstance(r.get("dofs"), int) else 0, r["wall_s"]))
+    write_csv(os.path.join(args.out, "ladder.csv"), rows, COLUMNS)
+    if ref:
+        notes.insert(0, f"reference: K_secant {ref['K_secant']:.5g}, K_tangent {ref['K_tangent']:.5g} N m/rad, "
+                        f"Fmax {ref['max_pin_force_N']:.5g} N from {ref['case']}; asymptotic: {ref['asymptotic']}")
+        plot_error(os.path.join(args.out, "error-vs-time.png"), pts, ref)
+        for s, m, w, ek, ef, r in sorted(pts, key=lambda p: (order.get(p[0], 9), p[2])):
+            own = r.get("own_err_K_secant_pct", "")
+            notes.append(f"  {s:22s} {m:16s} {r['dofs'] if r['dofs'] else 0:8d} DoFs {w:8.1f} s  K_sec {r['K_secant']:.4e} "
+                         f"K_tan {r['K_tangent']:.4e} err K_sec {r['err_K_secant_pct']:+7.2f} % K_tan "
+                         f"{r['err_K_tangent_pct']:+7.2f} % Fmax {r['max_pin_force_N']:7.1f} N ({r['err_Fmax_pct']:+6.2f} %)"
+                         + (f"  vs own finest {r['own_finest']}: K_sec {own:+.2f} % K_tan {r['own_err_K_tangent_pct']:+.2f} %"
+                            if own != "" else "") + ("  [Pareto " + r["pareto"] + "]" if r.get("pareto") else "")
+                         + ("  [contact-speed]" if r["source"] != "ladder" else ""))
+    if any(has_k(r) and not r["scene"].startswith("analytic") for r in rows):
+        plot_cost(os.path.join(args.out, "cost-vs-dofs.png"), rows, notes)
+    # 1 vs 2 ranks
+    rk = [r for r in rows if r["scene"] == "2D elastic pins" and has_k(r)]
+    table = []
+    for m in sorted({r["mesh"] for r in rk if r["ranks"] == 1}):
+        one = [r for r in rk if r["mesh"] == m and r["ranks"] == 1]
+        two = [r for r in rk if r["mesh"] == m and r["ranks"] == 2]
+        if one and two:
+            a, b = one[-1], min(two, key=lambda r: r["wall_s"])
+            table.append({"mesh": m, "dofs_1": a["dofs"], "dofs_2": b["dofs"], "wall_1_s": a["wall_s"],
+                          "wall_2_s": b["wall_s"], "speedup": a["wall_s"] / b["wall_s"],
+                          "program_wall_1_s": a["program_wall_s"], "program_wall_2_s": b["program_wall_s"],
+                          "solve_speedup": a["program_wall_s"] / b["program_wall_s"],
+                          "K_secant_1": a["K_secant"], "K_secant_2": b["K_secant"],
+                          "dK_secant_rel": (b["K_secant"] - a["K_secant"]) / a["K_secant"],
+                          "dK_tangent_rel": (b["K_tangent"] - a["K_tangent"]) / a["K_tangent"],
+                          "dFmax_rel": (b["max_pin_force_N"] - a["max_pin_force_N"]) / a["max_pin_force_N"],
+                          "pins_1": a["pins_in_contact"], "pins_2": b["pins_in_contact"],
+                          "iters_1": a["active_set_iterations"], "iters_2": b["active_set_iterations"],
+                          "load_1": a["load_avg_at_start"], "load_2": b["load_avg_at_start"]})
+    if table:
+        write_csv(os.path.join(args.out, "ranks.csv"), table, list(table[0].keys()))
+        for t in table:
+            notes.append(f"ranks {t['mesh']}: DoFs {t['dofs_1']}/{t['dofs_2']}, wall 1 rank {t['wall_1_s']:.1f} s, "
+                         f"2 ranks {t['wall_2_s']:.1f} s, speed-up {t['speedup']:.2f} (program's state wall "
+                         f"{t['solve_speedup']:.2f}); dK_sec {t['dK_secant_rel']:.1e}, dK_tan {t['dK_tangent_rel']:.1e}, "
+                         f"dFmax {t['dFmax_rel']:.1e}, pins {t['pins_1']}/{t['pins_2']}, AS it. {t['iters_1']}/{t['iters_2']}")
+    ss = read_csv(os.path.join(args.out, "seed-study-fe.csv"))
+    if ss:
+        plot_seed_study(os.path.join(args.out, "seed-study-fe.png"), ss)
+        for sweep in ("pin radius", "eccentricity"):
+            for model in sorted({r["model"] for r in ss}):
+                rr = sorted((r for r in ss if r["sweep"] == sweep and r["model"] == model and has_k(r)),
+                            key=lambda r: r["value"])
+                if rr:
+                    notes.append(f"seed study {sweep:12s} {model:24s}: " + ", ".join(
+                        f"{r['value']:g}: {r['K_secant']:.4g}/{r['K_tangent']:.4g} ({r['pins_in_contact']}p)" for r in rr))
+    with open(os.path.join(args.out, "summary.txt"), "w") as f:
+        f.write("\n".join(notes) + "\n")
+    print("\n".join(notes))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "cycloid-contact"))
+    ap.add_argument("--part", default="analytic,2d,3d1,3d2,ranks,seed-study",
+                    help="comma list of analytic, 2d, 3d1, 3d2, ranks, seed-study")
+    ap.add_argument("--quick", action="store_true", help="the coarse meshes of every part only")
+    ap.add_argument("--ranks", type=int, default=2)
+    ap.add_argument("--cases", default=None, help="comma list of mesh labels to run (default: all of the part)")
+    ap.add_argument("--no-seed-study-fe", dest="seed_study_fe", action="store_false",
+                    help="seed-study: analytic models only")
+    ap.add_argument("--timeout", type=float, default=1500.)
+    ap.add_argument("--out", default=os.path.join(ROOT, "doc", "ladder"))
+    ap.add_argument("--keep", default=None, help="keep prm, logs and outputs here")
+    ap.add_argument("--analyse-only", action="store_true")
+    args = ap.parse_args()
+    args.exe = os.path.abspath(args.exe)
+    os.makedirs(args.out, exist_ok=True)
+    if args.cases:
+        keep = set(args.cases.split(","))
+        for lst in (TWO_D_RIGID, TWO_D_ELASTIC, THREE_D1, THREE_D2):
+            lst[:] = [c for c in lst if c[0] in keep]
+        RANKS[:] = [c for c in RANKS if c in keep]
+    if not args.analyse_only:
+        if args.keep:
+            os.makedirs(args.keep, exist_ok=True)
+            work, tmp = os.path.abspath(args.keep), None
+        else:
+            tmp = tempfile.TemporaryDirectory()
+            work = tmp.name
+        print(f"executable {args.exe}, work dir {work}", flush=True)
+        funcs = {"analytic": part_analytic, "2d": part_2d, "3d1": part_3d1, "3d2": part_3d2, "ranks": part_ranks}
+        path = os.path.join(args.out, "ladder.csv")
+        for part in args.part.split(","):
+            if part == "seed-study":
+                new = part_seed_study(args, work)
+                sp = os.path.join(args.out, "seed-study-fe.csv")
+                old = read_csv(sp)
+                fresh = {(r["sweep"], r["value"], r["model"]) for r in new}
+                rows = [r for r in old if (r["sweep"], r["value"], r["model"]) not in fresh] + new
+                rows.sort(key=lambda r: (r["sweep"], r["model"], r["value"]))
+                write_csv(sp, rows, SS_COLUMNS)
+                continue
+            print(f"part {part}", flush=True)
+            new = funcs[part](args, work)
+            # Replace the re-run (scene, mesh, ranks) rows, keep the rest; write after every part.
+            old = [r for r in read_csv(path) if r.get("source") == "ladder"]
+            fresh = {(r["scene"], r["mesh"], r["ranks"]) for r in new}
+            rows = [r for r in old if (r["scene"], r["mesh"], r["ranks"]) not in fresh] + new
+            write_csv(path, rows, COLUMNS)
+        if tmp:
+            tmp.cleanup()
+    analyse(args)
+
+
+if __name__ == "__main__":
+    main()
