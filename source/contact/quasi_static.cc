@@ -40,6 +40,7 @@ namespace cycloid
       : prm(parameters)
       , comm(comm)
       , psi(psi)
+      , psi_mesh(psi)
       , sweep(sweep)
       , geo(parameters.geometry)
       , pcout(std::cout, dealii::Utilities::MPI::this_mpi_process(comm) == 0)
@@ -310,11 +311,17 @@ namespace cycloid
       std::vector<double> fx(nd * zp, 0.), fy(nd * zp, 0.), moment(nd * zp, 0.);
       for (const unsigned int i : contact->active_set())
         {
-          const auto            &s  = slaves[i];
-          const unsigned int     k  = s.body * zp + s.cylinder;
-          const dealii::Point<2> c  = geo.disc_centre(s.body, psi);
-          const double           gx = reactions[i][0] * scale,
-                       gy           = reactions[i][1] * scale;
+          const auto            &s = slaves[i];
+          const unsigned int     k = s.body * zp + s.cylinder;
+          const dealii::Point<2> c = geo.disc_centre(s.body, psi);
+          // Reactions are in the mesh axes; the disc has turned by delta
+          // since the mesh's crank angle (transient runs): housing frame.
+          const double delta = geo.disc_rotation(s.body, psi) -
+                               geo.disc_rotation(s.body, psi_mesh);
+          const double rx = reactions[i][0] * scale,
+                       ry = reactions[i][1] * scale;
+          const double gx = std::cos(delta) * rx - std::sin(delta) * ry,
+                       gy = std::sin(delta) * rx + std::cos(delta) * ry;
           fx[k] += gx;
           fy[k] += gy;
           moment[k] +=

@@ -33,7 +33,8 @@ namespace cycloid
         return "step,time_s,kinetic_J,elastic_J,external_work_J,"
                "active_set_iterations,crank_deg,torque_Nm,rotation_rad,"
                "bore_work_J,contact_work_J,dissipated_J,balance_error_J,"
-               "relative_balance_error,max_penetration_um,wall_s";
+               "relative_balance_error,max_penetration_um,wall_s,"
+               "angular_momentum_Nms";
       }
 
       /** Byte size of a file (0 if missing). */
@@ -64,6 +65,7 @@ namespace cycloid
               &balance,
               &penetration,
               &iterations,
+              &angular_momentum,
               &fx,
               &fy,
               &fn};
@@ -102,6 +104,54 @@ namespace cycloid
       settings.rayleigh_stiffness = t.rayleigh_stiffness;
       dynamics =
         std::make_unique<ContactDynamics<dim>>(*this->contact, settings);
+
+      // The discs' rigid rotation about their centres (mesh frame).
+      const auto                   &el = this->contact->elasticity();
+      const auto                   &fe = el.finite_element();
+      const dealii::Quadrature<dim> nodes(
+        fe.base_element(0).get_unit_support_points());
+      dealii::FEValues<dim>                        values(el.mapping(),
+                                   fe,
+                                   nodes,
+                                   dealii::update_quadrature_points);
+      std::vector<dealii::types::global_dof_index> indices(
+        fe.n_dofs_per_cell());
+      rotation_field.reinit(el.locally_owned_dofs(), this->comm);
+      for (const auto &cell : el.dof_handler().active_cell_iterators())
+        {
+          if (!cell->is_locally_owned() ||
+              cell->material_id() >= this->prm.scene.n_discs)
+            continue;
+          const dealii::Point<2> c =
+            this->geo.disc_centre(cell->material_id(), psi0);
+          values.reinit(cell);
+          cell->get_dof_indices(indices);
+          for (unsigned int i = 0; i < indices.size(); ++i)
+            {
+              if (!el.locally_owned_dofs().is_element(indices[i]))
+                continue;
+              const auto [comp, node]    = fe.system_to_component_index(i);
+              const auto &x              = values.quadrature_point(node);
+              rotation_field[indices[i]] = comp == 0 ? -(x[1] - c[1]) :
+                                           comp == 1 ? x[0] - c[0] :
+                                                       0.;
+            }
+        }
+      rotation_field.compress(dealii::VectorOperation::insert);
+    }
+
+
+
+    template <int dim>
+    double
+    Transient<dim>::angular_momentum() const
+    {
+      const auto Mv =
+        this->contact->elasticity().mass_times(dynamics->velocity());
+      double L = 0;
+      for (const auto i : rotation_field.locally_owned_elements())
+        L += rotation_field[i] * Mv[i];
+      return dealii::Utilities::MPI::sum(L, this->comm);
     }
 
 
@@ -245,6 +295,7 @@ namespace cycloid
           const double relative =
             balance / std::max({std::abs(external), total, 1e-300});
 
+          const double L = angular_momentum() * J;
           if (root)
             {
               energy << step << ',' << time << ',' << report.kinetic * J << ','
@@ -254,7 +305,7 @@ namespace cycloid
                      << report.bore_work * J << ',' << report.contact_work * J
                      << ',' << report.dissipated * J << ',' << balance << ','
                      << relative << ',' << report.max_penetration * 1e3 << ','
-                     << row.wall_s << '\n';
+                     << row.wall_s << ',' << L << '\n';
               energy.flush();
               postprocess::write_stiffness_row(stiffness, row);
               for (auto &p : pins)
@@ -299,6 +350,7 @@ namespace cycloid
           history.balance.push_back(balance);
           history.penetration.push_back(report.max_penetration * 1e3);
           history.iterations.push_back(report.iterations);
+          history.angular_momentum.push_back(L);
           for (unsigned int k = 0; k < nd * zp; ++k)
             {
               history.fx.push_back(pins[k].fx_N);
@@ -497,7 +549,8 @@ namespace cycloid
                  {"dissipated_J", &h.dissipated},
                  {"balance_error_J", &h.balance},
                  {"max_penetration_um", &h.penetration},
-                 {"active_set_iterations", &h.iterations}};
+                 {"active_set_iterations", &h.iterations},
+                 {"angular_momentum_Nms", &h.angular_momentum}};
         for (const auto &[name, data] : series)
           if (n > 0)
             file.create_dataset<double>(name, {n}).write(*data);

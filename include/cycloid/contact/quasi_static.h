@@ -126,9 +126,11 @@ namespace cycloid
       double
       width_scale() const;
 
-      const parameters::AllParameters              prm;
-      const MPI_Comm                               comm;
-      double                                       psi;
+      const parameters::AllParameters prm;
+      const MPI_Comm                  comm;
+      double                          psi;
+      /** Crank angle of the mesh (psi differs in transient runs). */
+      const double                                 psi_mesh;
       const double                                 sweep;
       const geometry::CycloidGeometry              geo;
       dealii::ConditionalOStream                   pcout;

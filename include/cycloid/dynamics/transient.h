@@ -53,7 +53,7 @@ namespace cycloid
       {
         std::vector<double> time, crank_deg, torque, rotation, k_secant,
           kinetic, elastic, external_work, dissipated, balance, penetration,
-          iterations;
+          iterations, angular_momentum;
         /** Per step, nd * zp values each. */
         std::vector<double> fx, fy, fn;
 
@@ -78,6 +78,15 @@ namespace cycloid
 
       void
       write_hdf5() const;
+
+      /** Angular momentum of the discs about their centres, g . M v with g
+       * the discs' unit rotation field (zero on other bodies) [N mm s per
+       * mm thickness in 2D]. */
+      double
+      angular_momentum() const;
+
+      /** The discs' unit rotation field (owned entries). */
+      dealii::TrilinosWrappers::MPI::Vector rotation_field;
 
       const double                                psi0;
       std::unique_ptr<ContactDynamics<dim>>       dynamics;
