@@ -323,9 +323,15 @@ namespace cycloid
           if (std::abs(relative) > 0.05 && !warned && external > 0)
             {
               warned = true;
-              this->pcout << "  warning: energy balance error "
-                          << 100. * relative << " % of the work at step "
-                          << step << std::endl;
+              this->pcout
+                << "  warning: energy balance error " << 100. * relative
+                << " % of the work at step " << step
+                << (t.crank_speed != 0. ?
+                      " (with the crank turning this includes the time "
+                      "discretisation of the moving contacts; a smaller Time "
+                      "step reduces it, see doc/stability.md)" :
+                      "")
+                << std::endl;
             }
           AssertThrow(std::abs(relative) <= t.max_energy_error || external <= 0,
                       dealii::ExcMessage(

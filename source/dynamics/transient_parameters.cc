@@ -78,7 +78,7 @@ namespace cycloid
                           "directory (same prm, same number of MPI ranks).");
         prm.declare_entry(
           "Maximum energy error",
-          "0.25",
+          "0.5",
           Double(0., 1e6),
           "The run stops with an error when |E_kin + E_el + D - E_0 - W| "
           "exceeds this fraction of the work W done on the stage (plain "

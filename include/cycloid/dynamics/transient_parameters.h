@@ -40,7 +40,7 @@ namespace cycloid
       /** Resume from the checkpoint in the output directory. */
       bool resume = false;
       /** Largest |energy balance error| / work before the run stops [-]. */
-      double max_energy_error = 0.25;
+      double max_energy_error = 0.5;
       /** Stop after this step (0: at the end time); for interrupted runs. */
       unsigned int stop_after_step = 0;
 
