@@ -14,12 +14,17 @@ Parts (run all, or some with --part a,b):
               9000 deg/s, 300 N m ramped over 8e-5 s) with the three schemes
               at dt 4e-5, 2e-5, 1e-5 to 2.4e-4 s: relative energy balance
               error, its convergence with dt, oscillation of the largest pin
-              force, active-set and CG iterations, wall time.
-  slow        prm/phase-sweep-2d.prm scene at 1000 N m: Run = phase-sweep over
-              one mesh period against a slow damped contact-stabilised
-              transient (100 steps of 1e-4 s per mesh period, Rayleigh mass
-              damping 2e4 1/s, ramp 10 % of the run; half a period by
-              default, --slow-full for the whole one): K_secant(crank angle).
+              force, active-set and CG iterations, wall time. Controls:
+              contact-stabilised and generalized-alpha with the crank held
+              (dt 4e-5), and an impact (modified profile, 1000 N m at once,
+              to 3.6e-4 s) with newmark and contact-stabilised.
+  slow        prm/phase-sweep-2d.prm scene at 1000 N m (Contact refinements
+              1 by default, --slow-refinements 2 for the prm's own): Run =
+              phase-sweep over one mesh period (21 phases) against a slow
+              damped contact-stabilised transient (100 steps of 1e-4 s per
+              mesh period, Rayleigh mass damping 2e4 1/s, ramp 5 steps; half a
+              period by default, --slow-full for the whole one after a
+              10-step ramp): K_secant(crank angle).
   active-set  tests/runs/quasi-static-elastic.prm scene (torques 100, 1000:
               cold start from the analytical model, then warm start) at
               Contact refinements 0..3, modified and seed profile, and one
@@ -33,6 +38,8 @@ Writes CSVs and PNGs into doc/transient/ (or --out) and prints a summary
 with markdown tables. FE runs go to --work (default /tmp/cycloid-stability),
 one directory per case; a case whose prm is unchanged is not run again
 unless --rerun (so the figures can be redone without computing).
+--quick runs fewer cases (bar at CFL 1, cycloid at dt 2e-5, a short slow
+run, Contact refinements 0 and 1) and writes to <work>/quick-out.
 
 Usage:
   /usr/bin/python3 benchmarks/transient/run.py [--part bar,cycloid,...]
@@ -401,6 +408,7 @@ def part_cycloid(args, fe):
                     "t_end_s": t[-1],
                     "final_relative_balance_error": rel[-1],
                     "max_abs_relative_balance_error": np.abs(rel).max(),
+                    "max_relative_balance_error": rel.max(),
                     "final_balance_error_J": bal[-1], "final_external_work_J": W[-1],
                     "final_contact_work_J": Wc[-1],
                     "final_kinetic_J": e[-1]["kinetic_J"], "final_elastic_J": e[-1]["elastic_J"],
@@ -414,6 +422,56 @@ def part_cycloid(args, fe):
                 })
                 curves[(scheme, dt)] = (t, rel, F, bal, W)
             rows.append(r)
+    # Control: contact-stabilised with the crank held (fixed obstacles: no
+    # obstacle work; the scheme must not gain).
+    held = []
+    for scheme in ([] if args.quick else ["contact-stabilised", "generalized-alpha"]):
+        dt = 4e-5
+        ov = {("Transient", "Scheme"): scheme, ("Transient", "Time step"): f"{dt:g}",
+              ("Transient", "End time"): f"{end:g}", ("Transient", "Checkpoint interval"): 0,
+              ("Transient", "Output interval"): 0, ("Transient", "Crank speed"): 0}
+        m = fe.run(f"cycloid-{scheme}-dt{dt:g}-crank-held", base, ov)
+        e, s = transient_series(m["dir"])
+        if e:
+            held.append({"scheme": f"{scheme} (crank held)", "dt_s": dt, "rc": m["rc"], "steps_done": len(e),
+                    "final_relative_balance_error": e[-1]["relative_balance_error"],
+                    "max_abs_relative_balance_error": max(abs(x["relative_balance_error"]) for x in e),
+                    "max_relative_balance_error": max(x["relative_balance_error"] for x in e),
+                    "final_balance_error_J": e[-1]["balance_error_J"],
+                    "final_external_work_J": e[-1]["external_work_J"],
+                    "final_contact_work_J": e[-1]["contact_work_J"],
+                    "mean_active_set_iterations": np.mean([x["active_set_iterations"] for x in e]),
+                    "command_wall_s": m["wall_s"], "error": m["error"], "warning": "; ".join(m["warnings"])})
+    # Impact: the modified profile (clearances 17-20 um) with 1000 N m
+    # applied at once: the disc swings through the clearance (takeup 2e-4 rad,
+    # reached after about 1.5e-4 s) and hits the pins.
+    impact = []
+    end_impact = 3.6e-4
+    for scheme in ([] if args.quick else ["newmark", "contact-stabilised"]):
+        dt = 2e-5
+        ov = {("Transient", "Scheme"): scheme, ("Transient", "Time step"): f"{dt:g}",
+              ("Transient", "End time"): f"{end_impact:g}", ("Transient", "Checkpoint interval"): 0,
+              ("Transient", "Output interval"): 0, ("Transient", "Ramp time"): 0, ("Loading", "Torque"): 1000,
+              ("Geometry", "Pin circle radius modification"): -0.01, ("Geometry", "Pin radius modification"): 0.01}
+        m = fe.run(f"cycloid-impact-{scheme}-dt{dt:g}", base, ov)
+        e, s = transient_series(m["dir"])
+        if e:
+            F = np.array([x["max_pin_force_N"] for x in s])
+            pins = np.array([x["pins_in_contact"] for x in s])
+            impact.append({"scheme": f"{scheme} (impact: modified profile, 1000 N m at once)", "dt_s": dt,
+                           "rc": m["rc"], "steps_done": len(e), "steps_planned": int(round(end_impact / dt)),
+                           "final_relative_balance_error": e[-1]["relative_balance_error"],
+                           "max_abs_relative_balance_error": max(abs(x["relative_balance_error"]) for x in e),
+                           "max_relative_balance_error": max(x["relative_balance_error"] for x in e),
+                           "final_balance_error_J": e[-1]["balance_error_J"],
+                           "final_external_work_J": e[-1]["external_work_J"],
+                           "final_contact_work_J": e[-1]["contact_work_J"],
+                           "largest_pin_force_series_N": " ".join(f"{f:.0f}" for f in F),
+                           "pins_in_contact_series": " ".join(str(int(p)) for p in pins),
+                           "mean_active_set_iterations": np.mean([x["active_set_iterations"] for x in e]),
+                           "max_active_set_iterations": max(x["active_set_iterations"] for x in e),
+                           "command_wall_s": m["wall_s"], "error": m["error"], "warning": "; ".join(m["warnings"])})
+    held += impact
     # Convergence of the balance error with dt (same end time).
     for scheme in SCHEMES:
         sel = [r for r in rows if r["scheme"] == scheme and r.get("t_end_s", 0) >= end - 1e-12]
@@ -422,7 +480,7 @@ def part_cycloid(args, fe):
             ea, eb = abs(a["final_balance_error_J"]), abs(b["final_balance_error_J"])
             b["observed_order_vs_previous_dt"] = math.log(ea / eb) / math.log(a["dt_s"] / b["dt_s"]) \
                 if ea > 0 and eb > 0 else float("nan")
-    write_csv(os.path.join(args.out, "cycloid.csv"), rows)
+    write_csv(os.path.join(args.out, "cycloid.csv"), rows + held)
     srows = []
     for (scheme, dt), (t, rel, F, bal, W) in curves.items():
         for i in range(len(t)):
@@ -473,8 +531,8 @@ def part_cycloid(args, fe):
             "final_balance_error_J", "final_external_work_J", "observed_order_vs_previous_dt",
             "max_second_difference_over_mean", "mean_active_set_iterations", "max_active_set_iterations",
             "cg_per_solve", "step_wall_s", "command_wall_s"]
-    log(md_table(rows, cols))
-    for r in rows:
+    log(md_table(rows + held, cols))
+    for r in rows + held:
         if r["error"] or r["warning"]:
             log(f"  {r['scheme']} dt {r['dt_s']:g}: {r['warning']} {r['error']}")
     return rows
@@ -495,10 +553,13 @@ def part_slow(args, fe):
         ramp_steps, cover = 5, 0.5
     n_steps = ramp_steps + int(round(cover * steps_per_period))
     phases = 5 if args.quick else 21
-    sweep = fe.run("slow-sweep", base, {("", "Write solution"): "false", ("Loading", "Torque"): torque,
-                                        ("Loading", "Number of phases"): phases})
-    tr = fe.run(f"slow-transient-{n_steps}", base, {
+    cr = args.slow_refinements
+    sweep = fe.run(f"slow-sweep-cr{cr}-{phases}", base, {
+        ("", "Write solution"): "false", ("Loading", "Torque"): torque, ("Loading", "Number of phases"): phases,
+        ("Mesh", "Contact refinements"): cr})
+    tr = fe.run(f"slow-transient-cr{cr}-{n_steps}", base, {
         ("", "Run"): "transient", ("", "Write solution"): "false", ("Loading", "Torque"): torque,
+        ("Mesh", "Contact refinements"): cr,
         ("Loading", "Number of phases"): 1,
         ("Transient", "Scheme"): "contact-stabilised", ("Transient", "Time step"): f"{dt:g}",
         ("Transient", "End time"): f"{n_steps * dt:g}", ("Transient", "Ramp time"): f"{ramp_steps * dt:g}",
@@ -526,8 +587,13 @@ def part_slow(args, fe):
     lo, hi = psi_t.min(), psi_t.max()
     in_range = [(p, k) for p, k in zip(psi_q, k_q) if lo - 1e-9 <= p <= hi + 1e-9]
     kq_range = np.array([k for p, k in in_range] + list(np.interp([lo, hi], psi_q[order], k_q[order])))
+    settled = np.array([x["time_s"] > 2 * ramp_t + 1e-12 for r, x in after])
+    if settled.any():
+        a, b = psi_t[settled].min(), psi_t[settled].max()
+        ks_range = np.array([k for p, k in zip(psi_q, k_q) if a - 1e-9 <= p <= b + 1e-9] +
+                            list(np.interp([a, b], psi_q[order], k_q[order])))
     summary = {
-        "torque_Nm": torque, "time_step_s": dt, "crank_speed_deg_per_s": speed, "ramp_time_s": ramp_t,
+        "torque_Nm": torque, "contact_refinements": cr, "time_step_s": dt, "crank_speed_deg_per_s": speed, "ramp_time_s": ramp_t,
         "steps": len(e), "transient_rc": tr["rc"], "transient_error": tr["error"],
         "transient_warnings": "; ".join(tr["warnings"]), "sweep_rc": sweep["rc"],
         "sweep_phases": phases, "angles_after_ramp_deg": f"{lo:.3f}-{hi:.3f}",
@@ -541,6 +607,15 @@ def part_slow(args, fe):
         "max_rel_diff_at_coinciding_angles": max(abs(k / kq - 1) for p, k, kq in coincide) if coincide else float("nan"),
         "mean_rel_diff_at_coinciding_angles": float(np.mean([k / kq - 1 for p, k, kq in coincide])) if coincide else float("nan"),
         "n_coinciding": len(coincide),
+        # After the ramp's own transient has decayed (t > 2 ramp times).
+        "settled_from_deg": psi_t[settled].min() if settled.any() else float("nan"),
+        "transient_fluctuation_settled": (k_t[settled].max() - k_t[settled].min()) / k_t[settled].mean()
+        if settled.any() else float("nan"),
+        "sweep_fluctuation_settled_range": (ks_range.max() - ks_range.min()) / ks_range.mean()
+        if settled.any() else float("nan"),
+        "max_rel_diff_settled_vs_sweep_interp": np.abs(k_t[settled] / k_interp[settled] - 1).max()
+        if settled.any() else float("nan"),
+        "max_kinetic_over_elastic_settled": (kin[settled] / el[settled]).max() if settled.any() else float("nan"),
         "max_kinetic_over_elastic_after_ramp": (kin / el).max(),
         "final_relative_balance_error": e[-1]["relative_balance_error"] if e else float("nan"),
         "dissipated_over_work": e[-1]["dissipated_J"] / e[-1]["external_work_J"] if e else float("nan"),
@@ -569,7 +644,8 @@ def part_slow(args, fe):
     ax.set_ylim(lim)
     ax.set_xlabel("crank angle [deg]")
     ax.set_ylabel("K_secant [MN m/rad]")
-    ax.set_title(f"2D modified profile, {torque} N m: slow transient vs phase sweep", fontsize=9)
+    ax.set_title(f"2D modified profile, {torque} N m, Contact refinements {cr}: slow transient vs phase sweep",
+                 fontsize=9)
     ax.legend(fontsize=7)
     ax.grid(alpha=.3)
     fig.tight_layout()
@@ -686,15 +762,18 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "doc/transient"))
     ap.add_argument("--rerun", action="store_true", help="ignore cached runs")
     ap.add_argument("--slow-full", action="store_true", help="slow part over a whole mesh period")
+    ap.add_argument("--slow-refinements", type=int, default=1,
+                    help="Mesh/Contact refinements of the slow part (the prm has 2; 1 halves the cost)")
     ap.add_argument("--timeout", type=float, default=1800)
     args = ap.parse_args()
     parts = [p.strip() for p in args.part.split(",") if p.strip()]
     for p in parts:
         if p not in PARTS:
             ap.error(f"unknown part {p} ({', '.join(PARTS)})")
-    if args.quick:
-        args.work = args.work.rstrip("/") + "-quick"
-        args.out = os.path.join(args.work, "out")
+    if args.quick and args.out == os.path.join(ROOT, "doc/transient"):
+        # Fewer cases: keep doc/transient for the full study (the runs share
+        # the work directory's cache).
+        args.out = os.path.join(args.work, "quick-out")
     os.makedirs(args.out, exist_ok=True)
     os.makedirs(args.work, exist_ok=True)
     fe = FE(args)

@@ -143,7 +143,14 @@ namespace cycloid
           const auto old = record.find(d);
           if (old == record.end())
             continue;
-          const double lambda = 0.5 * (old->second.first + entry.first);
+          // Newmark's multipliers are end-of-step forces: trapezoid.
+          // Contact-stabilised reports the step average and
+          // generalized-alpha the force at t_{n+1-alpha_f}, inside the
+          // step: each is the step's force already.
+          const double lambda =
+            settings.scheme == Scheme::newmark ?
+              0.5 * (old->second.first + entry.first) :
+              entry.first;
           if (lambda != 0.)
             w -= lambda * (G(entry.second) - G(old->second.second));
         }

@@ -81,7 +81,8 @@ namespace cycloid
           "0.5",
           Double(0., 1e6),
           "The run stops with an error when |E_kin + E_el + D - E_0 - W| "
-          "exceeds this fraction of the work W done on the stage (plain "
+          "exceeds this fraction of the largest energy level so far, max(E_kin + "
+          "E_el + D, |W|) (plain "
           "Newmark chattering at contact gains energy) [-]; a warning is "
           "printed from 5 %.");
         prm.declare_entry(

@@ -55,7 +55,13 @@ namespace cycloid
       double       kinetic    = 0;
       /** Work of the load surface (torque or prescribed rotation). */
       double bore_work = 0;
-      /** Work of the moving obstacles (closing gaps under pressure). */
+      /** Work of the moving obstacles: -sum lambda [G_{n+1}(u_mid) -
+       * G_n(u_mid)] over the contact nodes, G the gap function of each time
+       * level at the mid-step displacement (zero for fixed obstacles);
+       * lambda the step's force: (lambda_n + lambda_{n+1})/2 for Newmark,
+       * the step average of contact-stabilised, the alpha-level force of
+       * generalized-alpha. The contact-stabilised projection's own work on
+       * moving obstacles is not part of it. */
       double contact_work = 0;
       /** Rayleigh damping dissipation. */
       double dissipated = 0;

@@ -88,10 +88,12 @@ namespace cycloid
       /** The discs' unit rotation field (owned entries). */
       dealii::TrilinosWrappers::MPI::Vector rotation_field;
 
-      const double                                psi0;
-      std::unique_ptr<ContactDynamics<dim>>       dynamics;
-      History                                     history;
-      double                                      initial_energy = 0;
+      const double                          psi0;
+      std::unique_ptr<ContactDynamics<dim>> dynamics;
+      History                               history;
+      double                                initial_energy = 0;
+      /** Largest of E_kin + E_el + D and |W| so far [J]. */
+      double                                      energy_scale = 0;
       std::vector<std::pair<double, std::string>> records;
     };
   } // namespace dynamics
