@@ -163,6 +163,8 @@ namespace cycloid
         n_crank_holes            = prm.get_integer("Number of crank holes");
         crank_hole_radius        = prm.get_double("Crank hole radius");
         crank_hole_circle_radius = prm.get_double("Crank hole circle radius");
+        axial_gap                = prm.get_double("Axial gap between discs");
+        housing_thickness        = prm.get_double("Housing wall thickness");
       }
       prm.leave_subsection();
     }
