@@ -53,6 +53,13 @@ namespace cycloid
              false,
              dealii::parallel::shared::Triangulation<dim>::partition_metis)
     {
+      AssertThrow(prm.scene.load_introduction !=
+                      Scene::LoadIntroduction::crank_holes ||
+                    prm.geometry.n_crank_holes > 0,
+                  dealii::ExcMessage(
+                    "Scene/Load introduction = crank holes needs "
+                    "Geometry/Number of crank holes > 0 (the disc would have "
+                    "no load surface); use Load introduction = bore."));
       pin_model = create_pin_model<dim>(prm);
       make_grid();
 
