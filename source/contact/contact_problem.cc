@@ -114,6 +114,22 @@ namespace cycloid
       collect_master_faces();
       find_slave_nodes();
       find_tied_nodes();
+      ghost_master_dofs();
+      active.clear();
+      fixed.clear();
+      load.clear();
+      reactions.assign(slaves.size(), dealii::Tensor<1, dim>());
+      gaps.resize(slaves.size());
+      for (unsigned int i = 0; i < slaves.size(); ++i)
+        gaps[i] = slaves[i].gap0;
+    }
+
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::ghost_master_dofs()
+    {
       // Every rank needs the master DoFs of all constraints it stores.
       std::vector<dealii::types::global_dof_index> extra;
       for (const auto &s : slaves)
@@ -122,13 +138,6 @@ namespace cycloid
         for (unsigned int c = 0; c < dim; ++c)
           extra.insert(extra.end(), t.masters[c].begin(), t.masters[c].end());
       problem->set_extra_relevant_dofs(extra);
-      active.clear();
-      fixed.clear();
-      load.clear();
-      reactions.assign(slaves.size(), dealii::Tensor<1, dim>());
-      gaps.resize(slaves.size());
-      for (unsigned int i = 0; i < slaves.size(); ++i)
-        gaps[i] = slaves[i].gap0;
     }
 
 
@@ -661,13 +670,7 @@ namespace cycloid
       for (const unsigned int i : active)
         was_active.insert(slaves[i].dofs[0]);
       find_slave_nodes();
-      std::vector<dealii::types::global_dof_index> extra;
-      for (const auto &s : slaves)
-        extra.insert(extra.end(), s.master_dofs.begin(), s.master_dofs.end());
-      for (const auto &t : ties)
-        for (unsigned int c = 0; c < dim; ++c)
-          extra.insert(extra.end(), t.masters[c].begin(), t.masters[c].end());
-      problem->set_extra_relevant_dofs(extra);
+      ghost_master_dofs();
       active.clear();
       for (unsigned int i = 0; i < slaves.size(); ++i)
         if (!slaves[i].hanging && was_active.count(slaves[i].dofs[0]))

@@ -147,10 +147,9 @@ namespace cycloid
           // Contact-stabilised reports the step average and
           // generalized-alpha the force at t_{n+1-alpha_f}, inside the
           // step: each is the step's force already.
-          const double lambda =
-            settings.scheme == Scheme::newmark ?
-              0.5 * (old->second.first + entry.first) :
-              entry.first;
+          const double lambda = settings.scheme == Scheme::newmark ?
+                                  0.5 * (old->second.first + entry.first) :
+                                  entry.first;
           if (lambda != 0.)
             w -= lambda * (G(entry.second) - G(old->second.second));
         }

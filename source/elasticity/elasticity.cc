@@ -22,6 +22,18 @@ namespace cycloid
 {
   namespace elasticity
   {
+    namespace
+    {
+      /** Lame parameters (lambda, mu) [MPa] of a material. */
+      std::pair<double, double>
+      lame(const parameters::ElasticMaterial &m)
+      {
+        const double E = m.youngs_modulus, nu = m.poissons_ratio;
+        return {E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
+      }
+    } // namespace
+
+
     template <int dim>
     LinearElasticity<dim>::LinearElasticity(
       const dealii::parallel::TriangulationBase<dim> &triangulation,
@@ -178,10 +190,7 @@ namespace cycloid
           AssertThrow(it != materials.end(),
                       dealii::ExcMessage("elasticity: no material for body " +
                                          std::to_string(cell->material_id())));
-          const double E      = it->second.youngs_modulus,
-                       nu     = it->second.poissons_ratio;
-          const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-          const double mu     = E / (2 * (1 + nu));
+          const auto [lambda, mu] = lame(it->second);
 
           cell_matrix = 0;
           cell_rhs    = 0;
@@ -343,11 +352,9 @@ namespace cycloid
         {
           if (!cell->is_locally_owned())
             continue;
-          const auto  &m = materials.at(cell->material_id());
-          const double E = m.youngs_modulus, nu = m.poissons_ratio;
-          const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-          const double mu     = E / (2 * (1 + nu));
-          const double rho    = density(cell->material_id());
+          const auto &m           = materials.at(cell->material_id());
+          const auto [lambda, mu] = lame(m);
+          const double rho        = density(cell->material_id());
           fe_values.reinit(cell);
           fe_values[disp].get_function_symmetric_gradients(u, strain);
           if (load_K)
@@ -436,11 +443,9 @@ namespace cycloid
         {
           if (!cell->is_locally_owned())
             continue;
-          const auto  &m = materials.at(cell->material_id());
-          const double E = m.youngs_modulus, nu = m.poissons_ratio;
-          const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-          const double mu     = E / (2 * (1 + nu));
-          const double rho    = density(cell->material_id());
+          const auto &m           = materials.at(cell->material_id());
+          const auto [lambda, mu] = lame(m);
+          const double rho        = density(cell->material_id());
           fe_values.reinit(cell);
           fe_values[disp].get_function_symmetric_gradients(u, strain);
           fe_values[disp].get_function_values(v, velocity);

@@ -373,6 +373,10 @@ namespace cycloid
       find_slave_nodes();
       void
       find_tied_nodes();
+      /** Add the master DoFs of all slave and tied constraints to the
+       * elasticity problem's relevant (ghost) set. */
+      void
+      ghost_master_dofs();
       /** Mortar: replace each slave node's gap and master coefficients by
        * their dual-basis weighted averages over the slave faces. */
       void
