@@ -4,6 +4,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/timer.h>
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
@@ -853,13 +854,29 @@ namespace cycloid
                         " iterations (Contact/Maximum active set iterations) "
                         "at " +
                         label + "."));
+          dealii::Timer clock(comm, true);
           problem->setup_constraints(
             {constraints(true, 0.), constraints(false, 1.)});
           problem->assemble_sets({});
-          state.linear_iterations += problem->solve_set(
-            0, settings.solver, settings.solver_tolerance, u0);
-          state.linear_iterations += problem->solve_set(
-            1, settings.solver, settings.solver_tolerance, u1);
+          const double       t_assemble = clock.wall_time();
+          const unsigned int n0         = problem->solve_set(0,
+                                                     settings.solver,
+                                                     settings.solver_tolerance,
+                                                     u0);
+          const double       t_solve0   = clock.wall_time();
+          const unsigned int n1         = problem->solve_set(1,
+                                                     settings.solver,
+                                                     settings.solver_tolerance,
+                                                     u1);
+          state.linear_iterations += n0 + n1;
+          if (std::getenv("CYCLOID_DEBUG") &&
+              dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+            std::cerr << "  [active set] " << label << ", iteration " << it
+                      << ": constraints+assembly " << t_assemble
+                      << " s, solve 0 (with preconditioner set-up) "
+                      << t_solve0 - t_assemble << " s / " << n0
+                      << " it, solve 1 " << clock.wall_time() - t_solve0
+                      << " s / " << n1 << " it" << std::endl;
           f0               = problem->effective_forces(u0, true);
           f1               = problem->effective_forces(u1, false);
           const double q0  = reaction(f0);

@@ -604,6 +604,13 @@ namespace cycloid
       const auto                           &rhs = rhs_sets[k];
       dealii::TrilinosWrappers::MPI::Vector x(locally_owned, comm);
       unsigned int                          iterations = 0;
+      if (solver != Solver::direct && u.size() == x.size())
+        {
+          // Warm start from the caller's previous solution.
+          for (const auto i : locally_owned)
+            x[i] = u[i];
+          x.compress(dealii::VectorOperation::insert);
+        }
       if (solver == Solver::direct)
         {
           if (ready != Ready::direct)
