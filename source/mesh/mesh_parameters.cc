@@ -65,6 +65,16 @@ namespace cycloid
                           "0.5",
                           Double(0),
                           "Radius of the a-priori contact refinement [mm].");
+        prm.declare_entry(
+          "Contact refinement side",
+          "both",
+          Selection("both|loaded"),
+          "Where the a-priori Contact refinements act: at the contact "
+          "point of every pin (both), or only at the pins whose moment arm "
+          "resists the load, arm x sign(load) >= -5 % of the largest arm "
+          "(loaded; the pins that can engage, about half of them; with "
+          "loads of both signs in one run it falls back to both). The gmsh "
+          "size field is the same either way [-].");
         prm.declare_entry("Polynomial degree",
                           "1",
                           Integer(1, 2),
@@ -118,9 +128,11 @@ namespace cycloid
         global_refinements        = prm.get_integer("Global refinements");
         contact_refinements       = prm.get_integer("Contact refinements");
         contact_refinement_radius = prm.get_double("Contact refinement radius");
-        write_msh                 = prm.get_bool("Write msh");
-        degree                    = prm.get_integer("Polynomial degree");
-        periodic                  = prm.get_bool("Periodic meshes");
+        refine_loaded_side_only =
+          prm.get("Contact refinement side") == "loaded";
+        write_msh       = prm.get_bool("Write msh");
+        degree          = prm.get_integer("Polynomial degree");
+        periodic        = prm.get_bool("Periodic meshes");
         adaptive_cycles = prm.get_integer("Adaptive refinement cycles");
       }
       prm.leave_subsection();

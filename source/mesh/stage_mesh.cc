@@ -730,23 +730,35 @@ namespace cycloid
     contact_points_along(const geometry::CycloidGeometry &geometry,
                          const unsigned int               n_discs,
                          const double                     psi,
-                         const double                     sweep)
+                         const double                     sweep,
+                         const int                        load_sign)
     {
-      if (sweep == 0.)
+      if (sweep == 0. && load_sign == 0)
         return contact_points(geometry, n_discs, psi);
-      const unsigned int n = static_cast<unsigned int>(
-        std::ceil(std::abs(sweep) / (geometry.mesh_period() / 20.)));
+      const unsigned int n =
+        sweep == 0. ? 1 :
+                      static_cast<unsigned int>(std::ceil(
+                        std::abs(sweep) / (geometry.mesh_period() / 20.)));
       std::vector<dealii::Point<2>> points;
-      for (unsigned int k = 0; k <= n; ++k)
+      for (unsigned int k = 0; k <= (sweep == 0. ? 0 : n); ++k)
         {
           const double s = psi + sweep * k / n;
           for (unsigned int d = 0; d < n_discs; ++d)
-            for (const auto &c : geometry.pin_contacts(d, s))
-              {
-                points.push_back(c.contact_point);
-                points.push_back(geometry.to_housing(
-                  d, psi, geometry.to_disc(d, s, c.contact_point)));
-              }
+            {
+              const auto contacts = geometry.pin_contacts(d, s);
+              double     largest  = 0;
+              for (const auto &c : contacts)
+                largest = std::max(largest, std::abs(c.arm));
+              for (const auto &c : contacts)
+                {
+                  if (load_sign != 0 && c.arm * load_sign < -0.05 * largest)
+                    continue;
+                  points.push_back(c.contact_point);
+                  if (sweep != 0.)
+                    points.push_back(geometry.to_housing(
+                      d, psi, geometry.to_disc(d, s, c.contact_point)));
+                }
+            }
         }
       return points;
     }
@@ -1103,8 +1115,24 @@ namespace cycloid
 
       if (prm.mesh.global_refinements > 0)
         tria.refine_global(prm.mesh.global_refinements);
+      // The sign of the load for Contact refinement side = loaded: the
+      // common sign of all the run's loads (0, every pin, if they differ).
+      int load_sign = 0;
+      if (prm.mesh.refine_loaded_side_only)
+        {
+          const auto loads = prm.loading.load_values();
+          const bool positive =
+            std::all_of(loads.begin(), loads.end(), [](const double v) {
+              return v >= 0.;
+            });
+          const bool negative =
+            std::all_of(loads.begin(), loads.end(), [](const double v) {
+              return v <= 0.;
+            });
+          load_sign = positive == negative ? 0 : (positive ? 1 : -1);
+        }
       refine_near_contacts(
-        contact_points_along(geo, prm.scene.n_discs, psi, sweep),
+        contact_points_along(geo, prm.scene.n_discs, psi, sweep, load_sign),
         prm.mesh.contact_refinement_radius,
         prm.mesh.contact_refinements,
         tria);

@@ -44,6 +44,9 @@ namespace cycloid
       unsigned int contact_refinements = 0;
       /** Radius around the contact points refined a priori [mm]. */
       double contact_refinement_radius = 0.5;
+      /** Refine a priori only at the contacts on the loaded side (the pins
+       * whose moment arm resists the load), not at every pin. */
+      bool refine_loaded_side_only = false;
       /** Polynomial degree of the FE displacement (1 or 2). */
       unsigned int degree = 1;
       /** Adaptive refinement cycles at the active contact nodes. */

@@ -129,13 +129,16 @@ namespace cycloid
      * @p psi + @p sweep [rad], for a mesh placed at @p psi: the pins' points
      * (housing frame) and the discs' material points carried back to their
      * placement at @p psi, sampled every 1/20 of a mesh period. With
-     * @p sweep = 0 the points of contact_points().
+     * @p sweep = 0 the points of contact_points(). With @p load_sign = +1
+     * or -1 only the contacts whose moment arm resists a load of that sign
+     * (arm x load_sign >= -5 % of the largest arm), with 0 all of them.
      */
     std::vector<dealii::Point<2>>
     contact_points_along(const geometry::CycloidGeometry &geometry,
                          const unsigned int               n_discs,
                          const double                     psi,
-                         const double                     sweep);
+                         const double                     sweep,
+                         const int                        load_sign = 0);
 
     /**
      * @brief Axial extent [z0, z1] of disc @p d in a 3D scene: discs of
