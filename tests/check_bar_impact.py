@@ -8,7 +8,7 @@ Usage: check_bar_impact.py BAR_IMPACT_EXECUTABLE [RANKS]
   2 %, the contact time within 2 steps, the rebound within 5 %, no
   penetration at the end of any step (1e-12 mm), and the energy never above
   its initial value (1e-9 relative): the balance error is a loss of at most
-  5 % (measured 1.2 % and 1.2 % at CFL 1).
+  5 % (measured -1.2 % and -1.5 % of E0 at CFL 1, doc/transient.md).
 - newmark: the known failure (chatter) must be visible to the project's
   own measures: the contact force switches on and off during the contact
   period and the energy balance error exceeds 10 % of E0 (measured +600 %).

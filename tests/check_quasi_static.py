@@ -11,7 +11,7 @@ Usage: check_quasi_static.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
 * at the highest torque the FE model engages the same pins as the
   analytical model of the same scene (run here with Run = analytic);
 * with --stiffer DIR (the same scene with rigid pins): that run is stiffer
-  (smaller rotation, larger K_secant and K_tangent) at every torque;
+  (smaller rotation, larger K_secant_elastic and K_tangent) at every torque;
 * with --close DIR TOL (the same scene on another mesh or element degree):
   K_secant_elastic and K_tangent agree with that run's to TOL (relative)
   at every torque, and the same pins are engaged.
