@@ -369,6 +369,16 @@ def part_bar(args):
 
 
 # ---------------------------------------------------------------- part 2: cycloid
+def balance_summary(e):
+    """Final and extreme energy-balance figures of one run's energy.csv rows."""
+    return {"final_relative_balance_error": e[-1]["relative_balance_error"],
+            "max_abs_relative_balance_error": max(abs(x["relative_balance_error"]) for x in e),
+            "max_relative_balance_error": max(x["relative_balance_error"] for x in e),
+            "final_balance_error_J": e[-1]["balance_error_J"],
+            "final_external_work_J": e[-1]["external_work_J"],
+            "final_contact_work_J": e[-1]["contact_work_J"]}
+
+
 def transient_series(out_dir):
     e = read_csv(os.path.join(out_dir, "energy.csv"))
     s = read_csv(os.path.join(out_dir, "stiffness.csv"))
@@ -434,12 +444,7 @@ def part_cycloid(args, fe):
         e, s = transient_series(m["dir"])
         if e:
             held.append({"scheme": f"{scheme} (crank held)", "dt_s": dt, "rc": m["rc"], "steps_done": len(e),
-                    "final_relative_balance_error": e[-1]["relative_balance_error"],
-                    "max_abs_relative_balance_error": max(abs(x["relative_balance_error"]) for x in e),
-                    "max_relative_balance_error": max(x["relative_balance_error"] for x in e),
-                    "final_balance_error_J": e[-1]["balance_error_J"],
-                    "final_external_work_J": e[-1]["external_work_J"],
-                    "final_contact_work_J": e[-1]["contact_work_J"],
+                    **balance_summary(e),
                     "mean_active_set_iterations": np.mean([x["active_set_iterations"] for x in e]),
                     "command_wall_s": m["wall_s"], "error": m["error"], "warning": "; ".join(m["warnings"])})
     # Impact: the modified profile (clearances 17-20 um) with 1000 N m
@@ -460,12 +465,7 @@ def part_cycloid(args, fe):
             pins = np.array([x["pins_in_contact"] for x in s])
             impact.append({"scheme": f"{scheme} (impact: modified profile, 1000 N m at once)", "dt_s": dt,
                            "rc": m["rc"], "steps_done": len(e), "steps_planned": int(round(end_impact / dt)),
-                           "final_relative_balance_error": e[-1]["relative_balance_error"],
-                           "max_abs_relative_balance_error": max(abs(x["relative_balance_error"]) for x in e),
-                           "max_relative_balance_error": max(x["relative_balance_error"] for x in e),
-                           "final_balance_error_J": e[-1]["balance_error_J"],
-                           "final_external_work_J": e[-1]["external_work_J"],
-                           "final_contact_work_J": e[-1]["contact_work_J"],
+                           **balance_summary(e),
                            "largest_pin_force_series_N": " ".join(f"{f:.0f}" for f in F),
                            "pins_in_contact_series": " ".join(str(int(p)) for p in pins),
                            "mean_active_set_iterations": np.mean([x["active_set_iterations"] for x in e]),

@@ -119,6 +119,15 @@ namespace cycloid
       active.clear();
       fixed.clear();
       load.clear();
+      reset_slave_results();
+    }
+
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::reset_slave_results()
+    {
       reactions.assign(slaves.size(), dealii::Tensor<1, dim>());
       gaps.resize(slaves.size());
       for (unsigned int i = 0; i < slaves.size(); ++i)
@@ -676,10 +685,7 @@ namespace cycloid
       for (unsigned int i = 0; i < slaves.size(); ++i)
         if (!slaves[i].hanging && was_active.count(slaves[i].dofs[0]))
           active.insert(i);
-      reactions.assign(slaves.size(), dealii::Tensor<1, dim>());
-      gaps.resize(slaves.size());
-      for (unsigned int i = 0; i < slaves.size(); ++i)
-        gaps[i] = slaves[i].gap0;
+      reset_slave_results();
     }
 
 

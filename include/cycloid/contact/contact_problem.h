@@ -377,6 +377,10 @@ namespace cycloid
        * elasticity problem's relevant (ghost) set. */
       void
       ghost_master_dofs();
+      /** Size the per-slave reactions (zero) and gaps (initial gaps) after
+       * the slave nodes were (re)collected. */
+      void
+      reset_slave_results();
       /** Mortar: replace each slave node's gap and master coefficients by
        * their dual-basis weighted averages over the slave faces. */
       void
