@@ -1,10 +1,12 @@
 #!/usr/bin/python3
 """Independent check of an `analytic` run's stiffness.csv and pin_forces.csv.
 
-Re-implements from design.md (not from the C++ sources) the profile in its
-x/y form, the kinematic assembly, a brute-force closest-point search, the
-curvature by finite differences, the disc depth and the pair models, and
-checks the program's output through the contract's column names:
+Re-implements from the documented formulas (doc/design-basis.md,
+doc/theory.md; not from the C++ sources) the profile in its x/y form, the
+kinematic assembly, a brute-force closest-point search, the curvature by
+finite differences, the disc depth and the pair models, and checks the
+program's output through the guaranteed column names (doc/design-basis.md,
+section 5.3):
 
   * clearance, arm and force direction of every pin;
   * torque balance sum(Fn * arm) = T and the pins in contact;

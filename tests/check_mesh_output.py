@@ -11,7 +11,7 @@ Usage: check_mesh_output.py FILE.prm DIR_1_RANK DIR_2_RANKS [EXECUTABLE]
   scene has is present;
 * disc cross-section area (shoelace over the cells) within 1e-3 of the
   exact area of the profile minus bore and crank holes (computed here from
-  design.md's x/y formula).
+  the x/y profile formula of doc/design-basis.md).
 """
 import math
 import sys

@@ -10,8 +10,9 @@ K1 = 0.675, rp = 130.370 mm, b = 16 mm):
     for a given housing";
   * shortening coefficient K1 0.60 ... 0.75 at fixed e = 2.2 mm (rp follows);
 at three torques (3, 300, 1000 N m), for both modification examples of
-design.md (A: Delta rp = Delta rrp = +0.01 mm, clearance 0-2.6 um;
-B: Delta rp = -0.01, Delta rrp = +0.01 mm, clearance 17.4-20 um) and both
+doc/design-basis.md section 2.2 (A: Delta rp = Delta rrp = +0.01 mm,
+clearance 0-2.6 um; B: Delta rp = -0.01, Delta rrp = +0.01 mm, clearance
+17.4-20 um) and both
 pair models (seed, line-contact). Each point is a phase sweep over one mesh
 period (9 phases); the mean over the period of K_tangent and K_secant is
 recorded.
