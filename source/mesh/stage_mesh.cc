@@ -451,10 +451,10 @@ namespace cycloid
           std::vector<Circle> circles;
           if (ids::is_pin(m))
             {
-              const auto c = geo_data.pin_centre(m - 100);
+              const auto c = geo_data.pin_centre(ids::pin_index(m));
               circles = {{c, g.pin_radius}, {c, prm.scene.pin_core_radius}};
             }
-          else if (m <= 1)
+          else if (ids::is_disc(m))
             {
               circles.push_back({geo_data.disc_centre(m, psi), g.bore_radius});
               for (unsigned int k = 0; k < g.n_crank_holes; ++k)
@@ -666,52 +666,6 @@ namespace cycloid
 
 
 
-    std::string
-    ids::boundary_name(const dealii::types::boundary_id b)
-    {
-      switch (b)
-        {
-          case flank:
-            return "tooth flank";
-          case bore:
-            return "bore";
-          case crank_hole:
-            return "crank holes";
-          case pin_surface:
-            return "pin surface";
-          case housing_seat:
-            return "housing seat";
-          case housing_outer:
-            return "housing outer";
-          case housing_inner:
-            return "housing inner";
-          case disc_axial:
-            return "disc axial faces";
-          case pin_axial:
-            return "pin end faces";
-          case housing_axial:
-            return "housing axial faces";
-          default:
-            return "boundary " + std::to_string(b);
-        }
-    }
-
-
-
-    std::string
-    ids::body_name(const dealii::types::material_id m)
-    {
-      if (m <= 1)
-        return "disc " + std::to_string(m);
-      if (m == housing)
-        return "housing";
-      if (is_pin(m))
-        return "pin " + std::to_string(m - 100);
-      return "body " + std::to_string(m);
-    }
-
-
-
     std::vector<dealii::Point<2>>
     contact_points(const geometry::CycloidGeometry &geometry,
                    const unsigned int               n_discs,
@@ -866,7 +820,7 @@ namespace cycloid
             }
           for (auto &m : raw.materials)
             if (ids::is_pin(m))
-              m = ids::pin((m - ids::pin(0) + k_pitch) % g.n_pins);
+              m = ids::pin((ids::pin_index(m) + k_pitch) % g.n_pins);
         }
 
       // gmsh -> deal.II vertex order (lexicographic); a hexahedron is a
@@ -903,7 +857,7 @@ namespace cycloid
                 z.push_back(z0 + (z1 - z0) * k / n);
             };
             const unsigned int nl = prm.mesh.axial_layers;
-            if (m <= 1)
+            if (ids::is_disc(m))
               {
                 const auto r = disc_axial_range(prm, m);
                 add(r.first, r.second, nl, true);
@@ -982,7 +936,7 @@ namespace cycloid
                 // Interior interface of a pin's core: keep it round.
                 if (ids::is_pin(m))
                   {
-                    const unsigned int j = m - 100;
+                    const unsigned int j = ids::pin_index(m);
                     if (all_on_circle(pts,
                                       geo.pin_centre(j),
                                       prm.scene.pin_core_radius,
@@ -998,7 +952,7 @@ namespace cycloid
                 for (const auto &p : pts)
                   axial = axial && std::abs(p[dim - 1] - pts[0][dim - 1]) < tol;
               }
-            if (m <= 1)
+            if (ids::is_disc(m))
               {
                 const unsigned int d = m;
                 if (axial)
@@ -1032,7 +986,7 @@ namespace cycloid
               }
             else if (ids::is_pin(m))
               {
-                const unsigned int j = m - 100;
+                const unsigned int j = ids::pin_index(m);
                 if (axial)
                   face->set_boundary_id(ids::pin_axial);
                 else
@@ -1103,8 +1057,8 @@ namespace cycloid
                   {
                     face->vertex(v) =
                       project_to_circle(face->vertex(v),
-                                        geo.pin_centre(cell->material_id() -
-                                                       100),
+                                        geo.pin_centre(
+                                          ids::pin_index(cell->material_id())),
                                         g.pin_radius);
                     moved[index] = true;
                   }

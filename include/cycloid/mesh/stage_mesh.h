@@ -7,6 +7,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/mesh/ids.h>
 #include <cycloid/parameters/all_parameters.h>
 
 #include <string>
@@ -16,104 +17,6 @@ namespace cycloid
 {
   namespace mesh
   {
-    /**
-     * @brief Identifiers of bodies, surfaces and manifolds in the stage
-     * mesh.
-     *
-     * | material_id | body          |
-     * |-------------|---------------|
-     * | 0, 1        | disc 0, disc 1|
-     * | 9           | housing       |
-     * | 100 + j     | pin j         |
-     *
-     * | boundary_id | surface                                        |
-     * |-------------|------------------------------------------------|
-     * | 1           | tooth flank (cycloid profile)                  |
-     * | 2           | disc bore                                      |
-     * | 3           | crank holes                                    |
-     * | 4           | pin surface                                    |
-     * | 5           | housing seat (pin grooves)                     |
-     * | 6           | housing outer surface                          |
-     * | 7           | housing inner surface between the grooves      |
-     * | 8           | disc axial faces (3D)                          |
-     * | 9           | pin end faces (3D)                             |
-     * | 10          | housing axial faces (3D)                       |
-     */
-    namespace ids
-    {
-      /** Material id of disc @p d. */
-      constexpr dealii::types::material_id
-      disc(const unsigned int d)
-      {
-        return d;
-      }
-      /** Material id of the housing. */
-      constexpr dealii::types::material_id housing = 9;
-      /** Material id of pin @p j. */
-      constexpr dealii::types::material_id
-      pin(const unsigned int j)
-      {
-        return 100 + j;
-      }
-      /** Is @p m a pin's material id? */
-      constexpr bool
-      is_pin(const dealii::types::material_id m)
-      {
-        return m >= 100 && m != dealii::numbers::invalid_material_id;
-      }
-
-      constexpr dealii::types::boundary_id flank         = 1;
-      constexpr dealii::types::boundary_id bore          = 2;
-      constexpr dealii::types::boundary_id crank_hole    = 3;
-      constexpr dealii::types::boundary_id pin_surface   = 4;
-      constexpr dealii::types::boundary_id housing_seat  = 5;
-      constexpr dealii::types::boundary_id housing_outer = 6;
-      constexpr dealii::types::boundary_id housing_inner = 7;
-      constexpr dealii::types::boundary_id disc_axial    = 8;
-      constexpr dealii::types::boundary_id pin_axial     = 9;
-      constexpr dealii::types::boundary_id housing_axial = 10;
-
-      /** Name of a boundary id, for output. */
-      std::string
-      boundary_name(const dealii::types::boundary_id b);
-      /** Name of a body, for output. */
-      std::string
-      body_name(const dealii::types::material_id m);
-
-      /** Manifold id of the profile of disc @p d. */
-      constexpr dealii::types::manifold_id
-      profile_manifold(const unsigned int d)
-      {
-        return 1 + d;
-      }
-      /** Manifold id of the bore of disc @p d. */
-      constexpr dealii::types::manifold_id
-      bore_manifold(const unsigned int d)
-      {
-        return 3 + d;
-      }
-      /** Manifold id of the housing's outer cylinder. */
-      constexpr dealii::types::manifold_id housing_manifold = 5;
-      /** Manifold id of crank hole @p k of disc @p d. */
-      constexpr dealii::types::manifold_id
-      crank_hole_manifold(const unsigned int d, const unsigned int k)
-      {
-        return 10 + 20 * d + k;
-      }
-      /** Manifold id of pin @p j's cylinder (pin surface and its groove). */
-      constexpr dealii::types::manifold_id
-      pin_manifold(const unsigned int j)
-      {
-        return 100 + j;
-      }
-      /** Manifold id of pin @p j's core circle (interior interface). */
-      constexpr dealii::types::manifold_id
-      pin_core_manifold(const unsigned int j)
-      {
-        return 2000 + j;
-      }
-    } // namespace ids
-
     /**
      * @brief The stage's contact points at a crank angle: the closest point
      * of every disc to every pin (housing frame, mm). They drive the mesh
