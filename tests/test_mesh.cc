@@ -81,7 +81,9 @@ TEST(Mesh, TwoDimensionalSceneIsIdentifiedCompletely)
 {
   parameters::AllParameters p = coarse_scene(2, 1);
   dealii::Triangulation<2>  tria;
-  mesh::create_stage_mesh(p, 0.1, tria);
+  mesh::create_stage_mesh(mesh::MeshSettings{p.geometry, p.scene, p.mesh},
+                          mesh::MeshRequest{0.1, 0., 0, ""},
+                          tria);
 
   std::set<dealii::types::material_id> bodies;
   for (const auto &cell : tria.active_cell_iterators())
@@ -122,7 +124,9 @@ TEST(Mesh, DiscAreaMatchesTheExactProfileAndConvergesAtSecondOrder)
   p.scene.n_discs                = 1;
   const double             exact = exact_disc_area(p);
   dealii::Triangulation<2> tria;
-  mesh::create_stage_mesh(p, 0., tria);
+  mesh::create_stage_mesh(mesh::MeshSettings{p.geometry, p.scene, p.mesh},
+                          mesh::MeshRequest{0., 0., 0, ""},
+                          tria);
   std::vector<double> errors;
   for (unsigned int level = 0; level < 3; ++level)
     {
@@ -154,7 +158,9 @@ TEST(Mesh, RefinedVerticesLieOnTheExactCurves)
   const double                    psi = 0.07;
   const geometry::CycloidGeometry geo(p.geometry);
   dealii::Triangulation<2>        tria;
-  mesh::create_stage_mesh(p, psi, tria);
+  mesh::create_stage_mesh(mesh::MeshSettings{p.geometry, p.scene, p.mesh},
+                          mesh::MeshRequest{psi, 0., 0, ""},
+                          tria);
   tria.refine_global(3);
 
   double       worst_flank = 0, worst_pin = 0, worst_hole = 0;
@@ -199,7 +205,9 @@ TEST(Mesh, ThreeDimensionalTwoDiscSceneWithHousing)
   parameters::AllParameters p = coarse_scene(3, 2);
   p.scene.pin_support = parameters::SceneParameters::PinSupport::housing;
   dealii::Triangulation<3> tria;
-  mesh::create_stage_mesh(p, 0.2, tria);
+  mesh::create_stage_mesh(mesh::MeshSettings{p.geometry, p.scene, p.mesh},
+                          mesh::MeshRequest{0.2, 0., 0, ""},
+                          tria);
 
   std::set<dealii::types::material_id> bodies;
   for (const auto &cell : tria.active_cell_iterators())
@@ -241,6 +249,8 @@ TEST(Mesh, SharedTriangulationIsPartitionedWithMetis)
     dealii::Triangulation<2>::limit_level_difference_at_vertices,
     false,
     dealii::parallel::shared::Triangulation<2>::partition_metis);
-  mesh::create_stage_mesh(p, 0., tria);
+  mesh::create_stage_mesh(mesh::MeshSettings{p.geometry, p.scene, p.mesh},
+                          mesh::MeshRequest{0., 0., 0, ""},
+                          tria);
   EXPECT_EQ(tria.n_locally_owned_active_cells(), tria.n_active_cells());
 }

@@ -41,7 +41,17 @@ namespace cycloid
         dealii::Triangulation<dim>::limit_level_difference_at_vertices,
         false,
         dealii::parallel::shared::Triangulation<dim>::partition_metis);
-      mesh::create_stage_mesh(prm, psi, tria);
+      mesh::create_stage_mesh(
+        mesh::MeshSettings{prm.geometry, prm.scene, prm.mesh},
+        mesh::MeshRequest{psi,
+                          0.,
+                          prm.mesh.refine_loaded_side_only ?
+                            mesh::common_sign(prm.loading.load_values()) :
+                            0,
+                          prm.mesh.write_msh ?
+                            prm.run.output_directory + "/stage.msh" :
+                            ""},
+        tria);
       const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();

@@ -117,7 +117,17 @@ namespace cycloid
     QuasiStatic<dim>::make_grid()
     {
       dealii::TimerOutput::Scope t(timer, "make grid");
-      mesh::create_stage_mesh(prm, psi, tria, sweep);
+      mesh::create_stage_mesh(
+        mesh::MeshSettings{prm.geometry, prm.scene, prm.mesh},
+        mesh::MeshRequest{psi,
+                          sweep,
+                          prm.mesh.refine_loaded_side_only ?
+                            mesh::common_sign(prm.loading.load_values()) :
+                            0,
+                          prm.mesh.write_msh ?
+                            prm.run.output_directory + "/stage.msh" :
+                            ""},
+        tria);
       pcout << "  mesh: " << dim << "D, " << prm.scene.n_discs << " disc(s), "
             << tria.n_global_active_cells() << " cells" << std::endl;
     }

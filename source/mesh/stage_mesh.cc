@@ -227,15 +227,15 @@ namespace cycloid
 
 
       RawMesh
-      generate_with_gmsh(const parameters::AllParameters &prm,
+      generate_with_gmsh(const MeshSettings              &settings,
                          const geometry::CycloidGeometry &geo_data,
                          const double                     psi,
                          const std::string               &msh_file,
                          const double                     sweep)
       {
         namespace geo         = gmsh::model::geo;
-        const auto        &g  = prm.geometry;
-        const auto        &m  = prm.mesh;
+        const auto        &g  = settings.geometry;
+        const auto        &m  = settings.mesh;
         const double       rp = geo_data.pin_circle_radius();
         const unsigned int zc = g.n_teeth, zp = g.n_pins;
 
@@ -250,7 +250,7 @@ namespace cycloid
 
         // Discs: profile as one spline per tooth, tip to tip.
         const unsigned int n_per_tooth = 24;
-        for (unsigned int d = 0; d < prm.scene.n_discs; ++d)
+        for (unsigned int d = 0; d < settings.scene.n_discs; ++d)
           {
             const double     z0 = 0.; // sections at z = 0, extruded later
             std::vector<int> tips(zc);
@@ -299,7 +299,7 @@ namespace cycloid
         // Pins: a core disc (held for Pin support = axis) and a ring.
         std::set<std::pair<int, int>> pin_entities;
         std::set<int>                 core_surfaces;
-        const double                  pin_length = prm.scene.n_discs == 2 ?
+        const double                  pin_length = settings.scene.n_discs == 2 ?
                                                      2. * g.tooth_width + g.axial_gap :
                                                      g.tooth_width;
         for (unsigned int j = 0; j < zp; ++j)
@@ -308,7 +308,7 @@ namespace cycloid
             const auto       c = geo_data.pin_centre(j);
             const int outer    = add_circle(c, g.pin_radius, 0., lc, curves);
             const int core =
-              add_circle(c, prm.scene.pin_core_radius, 0., lc, curves);
+              add_circle(c, settings.scene.pin_core_radius, 0., lc, curves);
             Body body;
             body.material = ids::pin(j);
             body.surfaces = {geo::addPlaneSurface({outer, core}),
@@ -332,7 +332,7 @@ namespace cycloid
         // bounded by radial lines half a pin pitch away: quadrilaterals by
         // construction. Each groove is split at its outermost point so that
         // every arc spans less than pi.
-        if (prm.scene.pin_support ==
+        if (settings.scene.pin_support ==
             parameters::SceneParameters::PinSupport::housing)
           {
             const double outer_r = rp + g.housing_thickness;
@@ -452,7 +452,8 @@ namespace cycloid
           if (ids::is_pin(m))
             {
               const auto c = geo_data.pin_centre(ids::pin_index(m));
-              circles = {{c, g.pin_radius}, {c, prm.scene.pin_core_radius}};
+              circles      = {{c, g.pin_radius},
+                              {c, settings.scene.pin_core_radius}};
             }
           else if (ids::is_disc(m))
             {
@@ -476,11 +477,11 @@ namespace cycloid
         // Size field.
         SizeField field(m);
         field.points =
-          contact_points_along(geo_data, prm.scene.n_discs, psi, sweep);
+          contact_points_along(geo_data, settings.scene.n_discs, psi, sweep);
         field.ring_radius       = geo_data.root_radius() - 2. * g.pin_radius;
         field.pin_radius        = g.pin_radius;
         field.pin_circle_radius = rp;
-        for (unsigned int d = 0; d < prm.scene.n_discs; ++d)
+        for (unsigned int d = 0; d < settings.scene.n_discs; ++d)
           {
             field.disc_centres.push_back(geo_data.disc_centre(d, psi));
             for (const Circle &c : circles_of(d))
@@ -491,8 +492,8 @@ namespace cycloid
         field.pin_entities  = pin_entities;
         field.core_surfaces = core_surfaces;
         // The core circle has 12 segments (transfinite): match them inside.
-        field.core_size   = 2. * pi * prm.scene.pin_core_radius / 12.;
-        field.core_radius = prm.scene.pin_core_radius;
+        field.core_size   = 2. * pi * settings.scene.pin_core_radius / 12.;
+        field.core_radius = settings.scene.pin_core_radius;
         gmsh::model::mesh::setSizeCallback(
           [&field](int dim, int tag, double x, double y, double) {
             return field(dim, tag, x, y);
@@ -720,23 +721,24 @@ namespace cycloid
 
 
     std::pair<double, double>
-    disc_axial_range(const parameters::AllParameters &prm, const unsigned int d)
+    disc_axial_range(const MeshSettings &settings, const unsigned int d)
     {
-      const double z0 = d * (prm.geometry.tooth_width + prm.geometry.axial_gap);
-      return {z0, z0 + prm.geometry.tooth_width};
+      const double z0 =
+        d * (settings.geometry.tooth_width + settings.geometry.axial_gap);
+      return {z0, z0 + settings.geometry.tooth_width};
     }
 
 
 
     template <int dim>
     void
-    attach_manifolds(const parameters::AllParameters &prm,
-                     const double                     psi,
-                     dealii::Triangulation<dim>      &tria)
+    attach_manifolds(const MeshSettings         &settings,
+                     const double                psi,
+                     dealii::Triangulation<dim> &tria)
     {
-      const geometry::CycloidGeometry geo(prm.geometry);
-      const auto                     &g = prm.geometry;
-      for (unsigned int d = 0; d < prm.scene.n_discs; ++d)
+      const geometry::CycloidGeometry geo(settings.geometry);
+      const auto                     &g = settings.geometry;
+      for (unsigned int d = 0; d < settings.scene.n_discs; ++d)
         {
           tria.set_manifold(ids::profile_manifold(d),
                             CycloidProfileManifold<dim>(geo, d, psi));
@@ -765,21 +767,22 @@ namespace cycloid
 
     template <int dim>
     void
-    create_stage_mesh(const parameters::AllParameters &prm,
-                      const double                     psi,
-                      dealii::Triangulation<dim>      &tria,
-                      const double                     sweep)
+    create_stage_mesh(const MeshSettings         &settings,
+                      const MeshRequest          &request,
+                      dealii::Triangulation<dim> &tria)
     {
+      const double psi   = request.crank_angle;
+      const double sweep = request.sweep;
       AssertThrow(tria.n_cells() == 0,
                   dealii::ExcMessage("need an empty mesh"));
-      AssertThrow(dim == 3 || prm.scene.n_discs == 1,
+      AssertThrow(dim == 3 || settings.scene.n_discs == 1,
                   dealii::ExcMessage(
                     "Scene: a 2D (plane-strain) FE scene models one disc; set "
                     "Scene/Number of discs = 1 (its forces and K are for that "
                     "disc), or Scene/Dimension = 3 for the two-disc stage."));
       const MPI_Comm                  comm = communicator_of(tria);
-      const geometry::CycloidGeometry geo(prm.geometry);
-      const auto                     &g = prm.geometry;
+      const geometry::CycloidGeometry geo(settings.geometry);
+      const auto                     &g = settings.geometry;
 
       // Periodic meshes: the stage at psi + 2 pi/zp is the stage at psi
       // turned by one pin pitch (the discs by one extra tooth pitch), when
@@ -788,7 +791,7 @@ namespace cycloid
       // that states a whole number of periods apart have identical meshes.
       double       psi_mesh = psi;
       unsigned int k_pitch  = 0;
-      if (prm.mesh.periodic && g.n_crank_holes == 0)
+      if (settings.mesh.periodic && g.n_crank_holes == 0)
         {
           const double period = geo.mesh_period();
           const double k      = std::floor(psi / period + 1e-9);
@@ -799,13 +802,8 @@ namespace cycloid
         }
       RawMesh raw;
       if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
-        raw = generate_with_gmsh(prm,
-                                 geo,
-                                 psi_mesh,
-                                 prm.mesh.write_msh ?
-                                   prm.run.output_directory + "/stage.msh" :
-                                   "",
-                                 sweep);
+        raw =
+          generate_with_gmsh(settings, geo, psi_mesh, request.msh_file, sweep);
       broadcast(raw, comm);
       if (k_pitch > 0)
         {
@@ -856,20 +854,20 @@ namespace cycloid
               for (unsigned int k = first ? 0 : 1; k <= n; ++k)
                 z.push_back(z0 + (z1 - z0) * k / n);
             };
-            const unsigned int nl = prm.mesh.axial_layers;
+            const unsigned int nl = settings.mesh.axial_layers;
             if (ids::is_disc(m))
               {
-                const auto r = disc_axial_range(prm, m);
+                const auto r = disc_axial_range(settings, m);
                 add(r.first, r.second, nl, true);
               }
             else
               {
-                const auto r0 = disc_axial_range(prm, 0);
+                const auto r0 = disc_axial_range(settings, 0);
                 add(r0.first, r0.second, nl, true);
-                if (prm.scene.n_discs == 2)
+                if (settings.scene.n_discs == 2)
                   {
-                    const auto r1 = disc_axial_range(prm, 1);
-                    add(r0.second, r1.first, prm.mesh.gap_layers, false);
+                    const auto r1 = disc_axial_range(settings, 1);
+                    add(r0.second, r1.first, settings.mesh.gap_layers, false);
                     add(r1.first, r1.second, nl, false);
                   }
               }
@@ -939,7 +937,7 @@ namespace cycloid
                     const unsigned int j = ids::pin_index(m);
                     if (all_on_circle(pts,
                                       geo.pin_centre(j),
-                                      prm.scene.pin_core_radius,
+                                      settings.scene.pin_core_radius,
                                       tol))
                       face->set_all_manifold_ids(ids::pin_core_manifold(j));
                   }
@@ -1032,7 +1030,7 @@ namespace cycloid
       // exact profile (the circles are exact already, but project them too
       // to remove round-off).
       std::vector<CycloidProfileManifold<dim>> profiles;
-      for (unsigned int d = 0; d < prm.scene.n_discs; ++d)
+      for (unsigned int d = 0; d < settings.scene.n_discs; ++d)
         profiles.emplace_back(geo, d, psi);
       std::vector<bool> moved(tria.n_vertices(), false);
       for (const auto &cell : tria.active_cell_iterators())
@@ -1065,31 +1063,20 @@ namespace cycloid
               }
           }
 
-      attach_manifolds(prm, psi, tria);
+      attach_manifolds(settings, psi, tria);
 
-      if (prm.mesh.global_refinements > 0)
-        tria.refine_global(prm.mesh.global_refinements);
-      // The sign of the load for Contact refinement side = loaded: the
-      // common sign of all the run's loads (0, every pin, if they differ).
-      int load_sign = 0;
-      if (prm.mesh.refine_loaded_side_only)
-        {
-          const auto loads = prm.loading.load_values();
-          const bool positive =
-            std::all_of(loads.begin(), loads.end(), [](const double v) {
-              return v >= 0.;
-            });
-          const bool negative =
-            std::all_of(loads.begin(), loads.end(), [](const double v) {
-              return v <= 0.;
-            });
-          load_sign = positive == negative ? 0 : (positive ? 1 : -1);
-        }
-      refine_near_contacts(
-        contact_points_along(geo, prm.scene.n_discs, psi, sweep, load_sign),
-        prm.mesh.contact_refinement_radius,
-        prm.mesh.contact_refinements,
-        tria);
+      if (settings.mesh.global_refinements > 0)
+        tria.refine_global(settings.mesh.global_refinements);
+      const int load_sign =
+        settings.mesh.refine_loaded_side_only ? request.load_sign : 0;
+      refine_near_contacts(contact_points_along(geo,
+                                                settings.scene.n_discs,
+                                                psi,
+                                                sweep,
+                                                load_sign),
+                           settings.mesh.contact_refinement_radius,
+                           settings.mesh.contact_refinements,
+                           tria);
     }
 
 
@@ -1195,21 +1182,19 @@ namespace cycloid
 
 
     template void
-    create_stage_mesh<2>(const parameters::AllParameters &,
-                         const double,
-                         dealii::Triangulation<2> &,
-                         const double);
+    create_stage_mesh<2>(const MeshSettings &,
+                         const MeshRequest &,
+                         dealii::Triangulation<2> &);
     template void
-    create_stage_mesh<3>(const parameters::AllParameters &,
-                         const double,
-                         dealii::Triangulation<3> &,
-                         const double);
+    create_stage_mesh<3>(const MeshSettings &,
+                         const MeshRequest &,
+                         dealii::Triangulation<3> &);
     template void
-    attach_manifolds<2>(const parameters::AllParameters &,
+    attach_manifolds<2>(const MeshSettings &,
                         const double,
                         dealii::Triangulation<2> &);
     template void
-    attach_manifolds<3>(const parameters::AllParameters &,
+    attach_manifolds<3>(const MeshSettings &,
                         const double,
                         dealii::Triangulation<3> &);
     template void

@@ -8,7 +8,7 @@
 
 #include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/mesh/ids.h>
-#include <cycloid/parameters/all_parameters.h>
+#include <cycloid/mesh/mesh_request.h>
 
 #include <string>
 #include <vector>
@@ -48,18 +48,20 @@ namespace cycloid
      * width b, the second one after an axial gap (mm).
      */
     std::pair<double, double>
-    disc_axial_range(const parameters::AllParameters &prm,
-                     const unsigned int               d);
+    disc_axial_range(const MeshSettings &settings, const unsigned int d);
 
     /**
      * @brief Generate the mesh of the scene with the gmsh C++ API (on rank 0
      * of @p tria's communicator, broadcast to the others), create @p tria
      * with material and boundary ids, move the coarse boundary vertices onto
      * the exact curves and attach the exact manifolds (cycloid profile, pin
-     * and hole cylinders), then apply the prm's global and contact
-     * refinements. @p tria must be empty. With @p sweep != 0 [rad] the
-     * contact size and refinement cover the contact points of crank angles
-     * psi ... psi + sweep (transient runs, whose discs follow the crank).
+     * and hole cylinders), then apply the settings' global and contact
+     * refinements. @p tria must be empty.
+     *
+     * The discs are placed at @p request's crank angle; with a sweep != 0
+     * the contact size and refinement cover the contact points of crank
+     * angles crank_angle ... crank_angle + sweep (transient runs, whose
+     * discs follow the crank).
      *
      * 2D: one section at z = 0 (plane strain), quadrilaterals. 3D: the
      * sections extruded through the disc widths into hexahedra, the discs
@@ -68,10 +70,9 @@ namespace cycloid
      */
     template <int dim>
     void
-    create_stage_mesh(const parameters::AllParameters &prm,
-                      const double                     psi,
-                      dealii::Triangulation<dim>      &tria,
-                      const double                     sweep = 0.);
+    create_stage_mesh(const MeshSettings         &settings,
+                      const MeshRequest          &request,
+                      dealii::Triangulation<dim> &tria);
 
     /**
      * @brief Attach the exact manifolds of the scene to @p tria's manifold
@@ -79,9 +80,9 @@ namespace cycloid
      */
     template <int dim>
     void
-    attach_manifolds(const parameters::AllParameters &prm,
-                     const double                     psi,
-                     dealii::Triangulation<dim>      &tria);
+    attach_manifolds(const MeshSettings         &settings,
+                     const double                psi,
+                     dealii::Triangulation<dim> &tria);
 
     /**
      * @brief Refine the cells within @p radius of a contact point
