@@ -2,6 +2,7 @@
 
 #include <deal.II/grid/manifold_lib.h>
 
+#include <cycloid/mesh/ids.h>
 #include <cycloid/mesh/manifolds.h>
 
 #include <cmath>
@@ -128,6 +129,41 @@ namespace cycloid
 
 
 
+    template <int dim>
+    void
+    attach_manifolds(const MeshSettings         &settings,
+                     const double                psi,
+                     dealii::Triangulation<dim> &tria)
+    {
+      const geometry::CycloidGeometry geo(settings.geometry);
+      const auto                     &g = settings.geometry;
+      for (unsigned int d = 0; d < settings.scene.n_discs; ++d)
+        {
+          tria.set_manifold(ids::profile_manifold(d),
+                            CycloidProfileManifold<dim>(geo, d, psi));
+          tria.set_manifold(ids::bore_manifold(d),
+                            *make_circle_manifold<dim>(
+                              geo.disc_centre(d, psi)));
+          for (unsigned int k = 0; k < g.n_crank_holes; ++k)
+            {
+              const auto h = geo.crank_hole_centre(d, k, psi);
+              tria.set_manifold(ids::crank_hole_manifold(d, k),
+                                *make_circle_manifold<dim>(h));
+            }
+        }
+      for (unsigned int j = 0; j < g.n_pins; ++j)
+        {
+          tria.set_manifold(ids::pin_manifold(j),
+                            *make_circle_manifold<dim>(geo.pin_centre(j)));
+          tria.set_manifold(ids::pin_core_manifold(j),
+                            *make_circle_manifold<dim>(geo.pin_centre(j)));
+        }
+      tria.set_manifold(ids::housing_manifold,
+                        *make_circle_manifold<dim>(dealii::Point<2>()));
+    }
+
+
+
     template class CycloidProfileManifold<2>;
     template class CycloidProfileManifold<3>;
     template dealii::Point<2>
@@ -138,5 +174,13 @@ namespace cycloid
     project_to_circle(const dealii::Point<3> &,
                       const dealii::Point<2> &,
                       double);
+    template void
+    attach_manifolds<2>(const MeshSettings &,
+                        const double,
+                        dealii::Triangulation<2> &);
+    template void
+    attach_manifolds<3>(const MeshSettings &,
+                        const double,
+                        dealii::Triangulation<3> &);
   } // namespace mesh
 } // namespace cycloid

@@ -2,8 +2,10 @@
 #define cycloid_mesh_manifolds_h
 
 #include <deal.II/grid/manifold.h>
+#include <deal.II/grid/tria.h>
 
 #include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/mesh/mesh_request.h>
 
 #include <memory>
 
@@ -66,6 +68,19 @@ namespace cycloid
     project_to_circle(const dealii::Point<dim> &p,
                       const dealii::Point<2>   &centre,
                       const double              radius);
+
+    /**
+     * @brief Attach the exact manifolds of the scene placed at crank angle
+     * @p psi to @p tria's manifold ids (mesh::ids): the discs' profiles,
+     * bores and crank holes, the pins' cylinders and cores, the housing.
+     * create_stage_mesh() calls it; call it again after loading a
+     * triangulation, which keeps the ids but not the manifolds.
+     */
+    template <int dim>
+    void
+    attach_manifolds(const MeshSettings         &settings,
+                     const double                psi,
+                     dealii::Triangulation<dim> &tria);
   } // namespace mesh
 } // namespace cycloid
 
