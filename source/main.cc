@@ -7,7 +7,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <cycloid/app/run.h>
-#include <cycloid/parameters/all_parameters.h>
+#include <cycloid/app/all_parameters.h>
 
 #include <iostream>
 #include <string>
@@ -57,7 +57,7 @@ main(int argc, char *argv[])
           if (arg == "--print-parameters")
             {
               dealii::ParameterHandler prm;
-              cycloid::parameters::AllParameters::declare_parameters(prm);
+              cycloid::app::AllParameters::declare_parameters(prm);
               if (root)
                 prm.print_parameters(
                   std::cout,
@@ -89,7 +89,7 @@ main(int argc, char *argv[])
         }
 
       const auto parameters =
-        cycloid::parameters::AllParameters::read(filename);
+        cycloid::app::AllParameters::read(filename);
       cycloid::app::run(parameters, MPI_COMM_WORLD);
     }
   catch (dealii::ExceptionBase &exc)

@@ -6,6 +6,7 @@
 #include <deal.II/base/numbers.h>
 
 #include <cycloid/analytic/stage_model.h>
+#include <cycloid/app/all_parameters.h>
 
 #include <gtest/gtest.h>
 
@@ -18,12 +19,12 @@ namespace
 {
   constexpr double pi = dealii::numbers::PI;
 
-  parameters::AllParameters
+  app::AllParameters
   seed_case(const std::string &model,
             const double       d_rp  = 0,
             const double       d_rrp = 0)
   {
-    parameters::AllParameters p;
+    app::AllParameters p;
     p.analytic.pair_model              = model;
     p.geometry.delta_pin_circle_radius = d_rp;
     p.geometry.delta_pin_radius        = d_rrp;
@@ -81,7 +82,7 @@ TEST(PairModels, SeedStiffnessEqualsTheSeedsClosedForm)
 {
   // k = pi b E rp S^{3/2} / (4 (1-mu^2) (rp S^{3/2} + 2 rrp T)) with
   // T = K1 (1+zp) cos phi - (1 + zp K1^2), on the concave flank.
-  const StageModel model(seed_case("seed"));
+  const StageModel model(seed_case("seed").model_settings());
   const auto      &g      = model.geometry();
   const double     lambda = 0.7, b = 16., E = 212000., mu = 0.3;
   const double     K1 = 0.675, rp = g.pin_circle_radius(), rrp = 3.;
@@ -109,7 +110,8 @@ TEST(LoadDistribution, TorqueBalanceAndComplementarity)
   for (const std::string model_name : {"seed", "line-contact"})
     for (const double d_rp : {0., -0.01})
       {
-        const StageModel model(seed_case(model_name, d_rp, 0.01 * (d_rp != 0)));
+        const StageModel model(
+          seed_case(model_name, d_rp, 0.01 * (d_rp != 0)).model_settings());
         for (const double torque : {3., 300., -1000., 3000.})
           {
             const LoadState s = model.solve(0.07, torque, 0.);
@@ -156,7 +158,7 @@ TEST(LoadDistribution, SeedModelWithoutModificationIsLinear)
 {
   // Zero clearances and a linear pair model: K_secant = K_tangent =
   // lambda sum k l^2 at any torque, over the pins of positive arm.
-  const StageModel model(seed_case("seed"));
+  const StageModel model(seed_case("seed").model_settings());
   const LoadState  s = model.solve(0.0, 500., 0.);
   double           k = 0;
   for (const PinLoad &p : s.pins)
@@ -178,7 +180,7 @@ TEST(LoadDistribution, PeriodicInCrankAngle)
   auto prm = seed_case("line-contact", -0.01, 0.01);
   prm.scene.load_introduction =
     parameters::SceneParameters::LoadIntroduction::bore;
-  const StageModel model(prm);
+  const StageModel model(prm.model_settings());
   const double     T = model.geometry().mesh_period();
   for (const double psi : {0.0, 0.05})
     {
@@ -211,7 +213,7 @@ TEST(LoadDistribution, TwoDiscsShareOneRotation)
     parameters::SceneParameters::LoadIntroduction::bore;
   auto one          = two;
   one.scene.n_discs = 1;
-  const StageModel m1(one), m2(two);
+  const StageModel m1(one.model_settings()), m2(two.model_settings());
   const LoadState  s1 = m1.solve(0.1, 400., 0.);
   const LoadState  s2 = m2.solve(0.1, 800., 0.);
   EXPECT_NEAR(s2.rotation, s1.rotation, 1e-12);
@@ -225,7 +227,8 @@ TEST(LoadDistribution, EngagementAndStiffnessGrowWithTorque)
 {
   for (const std::string model_name : {"seed", "line-contact"})
     {
-      const StageModel model(seed_case(model_name, -0.01, 0.01));
+      const StageModel model(
+        seed_case(model_name, -0.01, 0.01).model_settings());
       unsigned int     pins     = 0;
       double           k_secant = 0, k_tangent = 0, beta = 0;
       for (const double torque : {3., 30., 300., 1000., 3000., 10000.})
@@ -249,7 +252,8 @@ TEST(LoadDistribution, EngagementAndStiffnessGrowWithTorque)
 
 TEST(LoadDistribution, WarmStartGivesTheSameStateInFewerIterations)
 {
-  const StageModel model(seed_case("line-contact", -0.01, 0.01));
+  const StageModel model(
+    seed_case("line-contact", -0.01, 0.01).model_settings());
   const LoadState  cold = model.solve(0.03, 1000., 0.);
   const LoadState  ref  = model.solve(0.0, 1000., 0.);
   const LoadState  warm = model.solve(0.03, 1000., ref.rotation);
@@ -263,7 +267,8 @@ TEST(LoadDistribution, RigidPinsAreStifferThanElasticPins)
 {
   auto rigid       = seed_case("line-contact");
   rigid.scene.pins = parameters::SceneParameters::PinModel::rigid;
-  const StageModel e(seed_case("line-contact")), r(rigid);
+  const StageModel e(seed_case("line-contact").model_settings()),
+    r(rigid.model_settings());
   EXPECT_GT(r.solve(0., 1000., 0.).k_tangent, e.solve(0., 1000., 0.).k_tangent);
 }
 
@@ -273,7 +278,8 @@ TEST(LoadDistribution, CrankHolesBreakExactPeriodicity)
 {
   // Three crank holes are not periodic with the 40-pin mesh period; the
   // effect on K is small but not zero.
-  const StageModel model(seed_case("line-contact", -0.01, 0.01));
+  const StageModel model(
+    seed_case("line-contact", -0.01, 0.01).model_settings());
   const double     T = model.geometry().mesh_period();
   const double     a = model.solve(0.05, 800., 0.).k_tangent;
   const double     b = model.solve(0.05 + T, 800., 0.).k_tangent;

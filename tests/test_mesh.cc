@@ -10,7 +10,7 @@
 
 #include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/mesh/stage_mesh.h>
-#include <cycloid/parameters/all_parameters.h>
+#include <cycloid/app/all_parameters.h>
 
 #include <gtest/gtest.h>
 
@@ -27,10 +27,10 @@ namespace
   constexpr double pi = dealii::numbers::PI;
 
   /** One disc, coarse sizes: a small mesh for fast tests. */
-  parameters::AllParameters
+  app::AllParameters
   coarse_scene(const unsigned int dim, const unsigned int n_discs)
   {
-    parameters::AllParameters p;
+    app::AllParameters p;
     p.scene.dimension   = dim;
     p.scene.n_discs     = n_discs;
     p.mesh.contact_size = 1.0;
@@ -45,7 +45,7 @@ namespace
   /** Exact area of the disc section: profile (shoelace over a dense
    * sampling) minus bore and crank holes. */
   double
-  exact_disc_area(const parameters::AllParameters &p)
+  exact_disc_area(const app::AllParameters &p)
   {
     const geometry::CycloidGeometry g(p.geometry);
     const unsigned int              n = 4000 * p.geometry.n_teeth;
@@ -73,17 +73,24 @@ namespace
         sum += cell->measure();
     return sum;
   }
+  /** The mesh request of a scene with its discs at crank angle @p psi
+   * [rad]. */
+  mesh::MeshRequest
+  placed_at(const double psi)
+  {
+    mesh::MeshRequest request;
+    request.crank_angle = psi;
+    return request;
+  }
 } // namespace
 
 
 
 TEST(Mesh, TwoDimensionalSceneIsIdentifiedCompletely)
 {
-  parameters::AllParameters p = coarse_scene(2, 1);
+  app::AllParameters p = coarse_scene(2, 1);
   dealii::Triangulation<2>  tria;
-  mesh::create_stage_mesh(mesh::MeshSettings{p.geometry, p.scene, p.mesh},
-                          mesh::MeshRequest{0.1, 0., 0, ""},
-                          tria);
+  mesh::create_stage_mesh(p.mesh_settings(), placed_at(0.1), tria);
 
   std::set<dealii::types::material_id> bodies;
   for (const auto &cell : tria.active_cell_iterators())
@@ -120,13 +127,11 @@ TEST(Mesh, DiscAreaMatchesTheExactProfileAndConvergesAtSecondOrder)
   // curves, so every refinement divides the error by about 4; vertices
   // snapped to a faceted curve would stall it.
   // Default element sizes (the judged configuration), one disc.
-  parameters::AllParameters p;
+  app::AllParameters p;
   p.scene.n_discs                = 1;
   const double             exact = exact_disc_area(p);
   dealii::Triangulation<2> tria;
-  mesh::create_stage_mesh(mesh::MeshSettings{p.geometry, p.scene, p.mesh},
-                          mesh::MeshRequest{0., 0., 0, ""},
-                          tria);
+  mesh::create_stage_mesh(p.mesh_settings(), placed_at(0.), tria);
   std::vector<double> errors;
   for (unsigned int level = 0; level < 3; ++level)
     {
@@ -152,15 +157,13 @@ TEST(Mesh, RefinedVerticesLieOnTheExactCurves)
   // (modified) cycloid profile and every pin-surface vertex on its pin's
   // cylinder, to 1e-6 mm (design: the facets of a coarse mesh must not
   // decide the answer).
-  parameters::AllParameters p         = coarse_scene(2, 1);
+  app::AllParameters p         = coarse_scene(2, 1);
   p.geometry.delta_pin_circle_radius  = -0.01;
   p.geometry.delta_pin_radius         = 0.01;
   const double                    psi = 0.07;
   const geometry::CycloidGeometry geo(p.geometry);
   dealii::Triangulation<2>        tria;
-  mesh::create_stage_mesh(mesh::MeshSettings{p.geometry, p.scene, p.mesh},
-                          mesh::MeshRequest{psi, 0., 0, ""},
-                          tria);
+  mesh::create_stage_mesh(p.mesh_settings(), placed_at(psi), tria);
   tria.refine_global(3);
 
   double       worst_flank = 0, worst_pin = 0, worst_hole = 0;
@@ -202,12 +205,10 @@ TEST(Mesh, RefinedVerticesLieOnTheExactCurves)
 
 TEST(Mesh, ThreeDimensionalTwoDiscSceneWithHousing)
 {
-  parameters::AllParameters p = coarse_scene(3, 2);
+  app::AllParameters p = coarse_scene(3, 2);
   p.scene.pin_support = parameters::SceneParameters::PinSupport::housing;
   dealii::Triangulation<3> tria;
-  mesh::create_stage_mesh(mesh::MeshSettings{p.geometry, p.scene, p.mesh},
-                          mesh::MeshRequest{0.2, 0., 0, ""},
-                          tria);
+  mesh::create_stage_mesh(p.mesh_settings(), placed_at(0.2), tria);
 
   std::set<dealii::types::material_id> bodies;
   for (const auto &cell : tria.active_cell_iterators())
@@ -243,14 +244,12 @@ TEST(Mesh, SharedTriangulationIsPartitionedWithMetis)
 {
   // On one rank every cell is owned by rank 0; the partitioner is METIS
   // (the two-rank case is checked by the mesh run test on 2 ranks).
-  parameters::AllParameters                  p = coarse_scene(2, 1);
+  app::AllParameters                  p = coarse_scene(2, 1);
   dealii::parallel::shared::Triangulation<2> tria(
     MPI_COMM_WORLD,
     dealii::Triangulation<2>::limit_level_difference_at_vertices,
     false,
     dealii::parallel::shared::Triangulation<2>::partition_metis);
-  mesh::create_stage_mesh(mesh::MeshSettings{p.geometry, p.scene, p.mesh},
-                          mesh::MeshRequest{0., 0., 0, ""},
-                          tria);
+  mesh::create_stage_mesh(p.mesh_settings(), placed_at(0.), tria);
   EXPECT_EQ(tria.n_locally_owned_active_cells(), tria.n_active_cells());
 }

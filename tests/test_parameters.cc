@@ -6,7 +6,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <cycloid/analytic/stage_model.h>
-#include <cycloid/parameters/all_parameters.h>
+#include <cycloid/app/all_parameters.h>
 
 #include <gtest/gtest.h>
 
@@ -23,11 +23,11 @@ namespace
     try
       {
         dealii::ParameterHandler prm;
-        parameters::AllParameters::declare_parameters(prm);
+        app::AllParameters::declare_parameters(prm);
         prm.parse_input_from_string(text);
-        parameters::AllParameters p;
+        app::AllParameters p;
         p.parse_parameters(prm);
-        const analytic::StageModel model(p);
+        const analytic::StageModel model(p.model_settings());
       }
     catch (dealii::ExceptionBase &e)
       {
@@ -51,8 +51,8 @@ TEST(Parameters, DefaultsAreTheSeedCase)
 {
   EXPECT_EQ(error_of(""), "");
   dealii::ParameterHandler prm;
-  parameters::AllParameters::declare_parameters(prm);
-  parameters::AllParameters p;
+  app::AllParameters::declare_parameters(prm);
+  app::AllParameters p;
   p.parse_parameters(prm);
   EXPECT_EQ(p.geometry.n_pins, 40u);
   EXPECT_EQ(p.geometry.n_teeth, 39u);

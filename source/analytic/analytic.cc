@@ -45,6 +45,25 @@ namespace cycloid
 
 
 
+    double
+    stage_hertz_half_width(const double                          force,
+                           const double                          rho,
+                           const geometry::GeometryParameters   &geometry,
+                           const parameters::MaterialParameters &material,
+                           const parameters::SceneParameters    &scene)
+    {
+      const bool rigid = scene.pins == parameters::SceneParameters::PinModel::rigid;
+      return hertz_half_width(force,
+                              geometry.tooth_width,
+                              geometry.pin_radius,
+                              rho,
+                              material.disc.plane_strain_modulus(),
+                              rigid ? 0. :
+                                      material.pin.plane_strain_modulus());
+    }
+
+
+
     void
     AnalyticParameters::declare_parameters(dealii::ParameterHandler &prm)
     {

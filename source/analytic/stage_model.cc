@@ -12,7 +12,7 @@ namespace cycloid
 {
   namespace analytic
   {
-    StageModel::StageModel(const parameters::AllParameters &parameters)
+    StageModel::StageModel(const ModelSettings &parameters)
       : prm(parameters)
       , geo(parameters.geometry)
       , model(PairStiffnessModel::create(parameters.analytic,
@@ -75,6 +75,45 @@ namespace cycloid
             pins.push_back(p);
           }
       return pins;
+    }
+
+
+
+    results::StageState
+    StageModel::stage_state(const LoadState &load, const double psi) const
+    {
+      results::StageState s;
+      s.crank           = psi;
+      s.torque          = load.torque;
+      s.rotation        = load.rotation;
+      s.k_tangent       = load.k_tangent;
+      s.takeup          = load.takeup;
+      s.reaction_torque = load.reaction_torque;
+      s.iterations      = load.iterations;
+      s.pins.reserve(load.pins.size());
+      for (const PinLoad &p : load.pins)
+        {
+          results::PinState r;
+          r.disc              = p.contact.disc;
+          r.pin               = p.contact.pin;
+          r.fx                = -p.force * p.contact.normal[0];
+          r.fy                = -p.force * p.contact.normal[1];
+          r.fn                = p.force;
+          r.arm               = p.contact.arm;
+          r.clearance         = p.contact.clearance;
+          r.phase             = p.contact.phase;
+          r.approach          = p.approach;
+          r.pair_stiffness    = p.stiffness;
+          r.contact_point     = p.contact.contact_point;
+          r.hertz_halfwidth   = stage_hertz_half_width(p.force,
+                                                     p.contact.curvature_radius,
+                                                     prm.geometry,
+                                                     prm.material,
+                                                     prm.scene);
+          r.contact_halfwidth = r.hertz_halfwidth;
+          s.pins.push_back(r);
+        }
+      return s;
     }
 
 

@@ -69,10 +69,17 @@ namespace cycloid
         prm.get_integer("Maximum active set iterations");
       search_distance    = prm.get_double("Search distance");
       residual_tolerance = prm.get_double("Residual tolerance");
-      formulation        = prm.get("Formulation");
+      formulation        = prm.get("Formulation") == "mortar" ?
+                             Formulation::mortar :
+                             Formulation::node_to_surface;
       prm.leave_subsection();
       prm.enter_subsection("Solver");
-      linear_solver    = prm.get("Linear solver");
+      const std::string solver = prm.get("Linear solver");
+      linear_solver            = solver == "direct" ?
+                                   elasticity::LinearSolver::direct :
+                                 solver == "cg-amg-translations" ?
+                                   elasticity::LinearSolver::cg_amg_translations_only :
+                                   elasticity::LinearSolver::cg_amg;
       solver_tolerance = prm.get_double("Relative tolerance");
       prm.leave_subsection();
     }

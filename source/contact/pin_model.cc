@@ -19,7 +19,7 @@ namespace cycloid
       class RigidPins : public PinModel<dim>
       {
       public:
-        explicit RigidPins(const parameters::AllParameters &prm)
+        explicit RigidPins(const PinModelSettings &prm)
           : prm(prm)
         {}
 
@@ -56,7 +56,7 @@ namespace cycloid
         }
 
       private:
-        const parameters::AllParameters &prm;
+        const PinModelSettings prm;
       };
 
 
@@ -68,7 +68,7 @@ namespace cycloid
       class ElasticPinsOnAxis : public RigidPins<dim>
       {
       public:
-        explicit ElasticPinsOnAxis(const parameters::AllParameters &prm)
+        explicit ElasticPinsOnAxis(const PinModelSettings &prm)
           : RigidPins<dim>(prm)
           , prm(prm)
           , geo(prm.geometry)
@@ -116,7 +116,7 @@ namespace cycloid
         }
 
       private:
-        const parameters::AllParameters &prm;
+        const PinModelSettings prm;
         const geometry::CycloidGeometry  geo;
       };
 
@@ -130,7 +130,7 @@ namespace cycloid
       class ElasticPinsInHousing : public RigidPins<dim>
       {
       public:
-        explicit ElasticPinsInHousing(const parameters::AllParameters &prm)
+        explicit ElasticPinsInHousing(const PinModelSettings &prm)
           : RigidPins<dim>(prm)
           , prm(prm)
         {}
@@ -181,7 +181,7 @@ namespace cycloid
         }
 
       private:
-        const parameters::AllParameters &prm;
+        const PinModelSettings prm;
       };
     } // namespace
 
@@ -189,7 +189,7 @@ namespace cycloid
 
     template <int dim>
     std::unique_ptr<PinModel<dim>>
-    create_pin_model(const parameters::AllParameters &prm)
+    create_pin_model(const PinModelSettings &prm)
     {
       using Scene        = parameters::SceneParameters;
       const bool rigid   = prm.scene.pins == Scene::PinModel::rigid;
@@ -209,8 +209,8 @@ namespace cycloid
 
 
     template std::unique_ptr<PinModel<2>>
-    create_pin_model<2>(const parameters::AllParameters &);
+    create_pin_model<2>(const PinModelSettings &);
     template std::unique_ptr<PinModel<3>>
-    create_pin_model<3>(const parameters::AllParameters &);
+    create_pin_model<3>(const PinModelSettings &);
   } // namespace contact
 } // namespace cycloid

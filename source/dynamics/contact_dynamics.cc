@@ -16,25 +16,6 @@ namespace cycloid
   {
     using Vector = dealii::TrilinosWrappers::MPI::Vector;
 
-    Scheme
-    parse_scheme(const std::string &name)
-    {
-      if (name == "newmark")
-        return Scheme::newmark;
-      if (name == "contact-stabilised")
-        return Scheme::contact_stabilised;
-      if (name == "generalized-alpha")
-        return Scheme::generalized_alpha;
-      AssertThrow(false,
-                  dealii::ExcMessage("Transient/Scheme: unknown scheme '" +
-                                     name +
-                                     "' (newmark | contact-stabilised | "
-                                     "generalized-alpha)."));
-      return Scheme::newmark;
-    }
-
-
-
     template <int dim>
     ContactDynamics<dim>::ContactDynamics(contact::ContactProblem<dim> &contact,
                                           const DynamicsSettings &settings)

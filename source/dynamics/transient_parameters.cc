@@ -6,6 +6,25 @@ namespace cycloid
 {
   namespace dynamics
   {
+    Scheme
+    parse_scheme(const std::string &name)
+    {
+      if (name == "newmark")
+        return Scheme::newmark;
+      if (name == "contact-stabilised")
+        return Scheme::contact_stabilised;
+      if (name == "generalized-alpha")
+        return Scheme::generalized_alpha;
+      AssertThrow(false,
+                  dealii::ExcMessage("Transient/Scheme: unknown scheme '" +
+                                     name +
+                                     "' (newmark | contact-stabilised | "
+                                     "generalized-alpha)."));
+      return Scheme::newmark;
+    }
+
+
+
     void
     TransientParameters::declare_parameters(dealii::ParameterHandler &prm)
     {
@@ -18,7 +37,7 @@ namespace cycloid
       {
         prm.declare_entry(
           "Scheme",
-          d.scheme,
+          d.scheme_name,
           Selection("newmark|contact-stabilised|generalized-alpha"),
           "Time scheme: 'newmark' (trapezoidal rule, contact on the "
           "displacements: energy-conserving without contact, chatters at "
@@ -102,7 +121,8 @@ namespace cycloid
     {
       prm.enter_subsection("Transient");
       {
-        scheme              = prm.get("Scheme");
+        scheme_name         = prm.get("Scheme");
+        scheme              = parse_scheme(scheme_name);
         spectral_radius     = prm.get_double("Spectral radius");
         time_step           = prm.get_double("Time step");
         end_time            = prm.get_double("End time");

@@ -3,7 +3,10 @@
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/utilities.h>
 
-#include <cycloid/parameters/all_parameters.h>
+#include <cycloid/parameters/loading.h>
+#include <cycloid/parameters/material.h>
+#include <cycloid/parameters/run.h>
+#include <cycloid/parameters/scene.h>
 
 #include <cmath>
 #include <fstream>
@@ -273,56 +276,5 @@ namespace cycloid
 
 
 
-    void
-    AllParameters::declare_parameters(dealii::ParameterHandler &prm)
-    {
-      RunParameters::declare_parameters(prm);
-      geometry::GeometryParameters::declare_parameters(prm);
-      MaterialParameters::declare_parameters(prm);
-      LoadingParameters::declare_parameters(prm);
-      SceneParameters::declare_parameters(prm);
-      analytic::AnalyticParameters::declare_parameters(prm);
-      mesh::MeshParameters::declare_parameters(prm);
-      contact::ContactParameters::declare_parameters(prm);
-      dynamics::TransientParameters::declare_parameters(prm);
-    }
-
-
-
-    void
-    AllParameters::parse_parameters(dealii::ParameterHandler &prm)
-    {
-      run.parse_parameters(prm);
-      geometry.parse_parameters(prm);
-      material.parse_parameters(prm);
-      loading.parse_parameters(prm);
-      scene.parse_parameters(prm);
-      analytic.parse_parameters(prm);
-      mesh.parse_parameters(prm);
-      contact.parse_parameters(prm);
-      transient.parse_parameters(prm);
-      AssertThrow(scene.pin_core_radius < geometry.pin_radius,
-                  dealii::ExcMessage("Scene/Pin core radius must be smaller "
-                                     "than Geometry/Pin radius."));
-    }
-
-
-
-    AllParameters
-    AllParameters::read(const std::string &filename)
-    {
-      {
-        std::ifstream in(filename);
-        AssertThrow(in.good(),
-                    dealii::ExcMessage("cannot open the parameter file '" +
-                                       filename + "'."));
-      }
-      dealii::ParameterHandler prm;
-      declare_parameters(prm);
-      prm.parse_input(filename);
-      AllParameters result;
-      result.parse_parameters(prm);
-      return result;
-    }
   } // namespace parameters
 } // namespace cycloid

@@ -2,6 +2,7 @@
 #define cycloid_analytic_pair_stiffness_h
 
 #include <cycloid/analytic/analytic_parameters.h>
+#include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/parameters/material.h>
 #include <cycloid/parameters/scene.h>
 
@@ -44,6 +45,19 @@ namespace cycloid
                      const double profile_curvature_radius,
                      const double disc_plane_strain_modulus,
                      const double pin_plane_strain_modulus);
+
+    /**
+     * @brief Hertz half-width [mm] of a pin of the stage against the disc
+     * profile of signed curvature radius @p profile_curvature_radius [mm]
+     * at force @p force [N]: hertz_half_width() with the stage's tooth
+     * width, pin radius and moduli (rigid pins add no compliance).
+     */
+    double
+    stage_hertz_half_width(const double                          force,
+                           const double                          profile_curvature_radius,
+                           const geometry::GeometryParameters   &geometry,
+                           const parameters::MaterialParameters &material,
+                           const parameters::SceneParameters    &scene);
 
     /**
      * @brief Interface of a pin-disc pair-stiffness model: the normal force

@@ -4,7 +4,9 @@
 #include <cycloid/analytic/load_distribution.h>
 #include <cycloid/analytic/pair_stiffness.h>
 #include <cycloid/geometry/cycloid_geometry.h>
-#include <cycloid/parameters/all_parameters.h>
+#include <cycloid/parameters/material.h>
+#include <cycloid/parameters/scene.h>
+#include <cycloid/results/stage_state.h>
 
 #include <memory>
 #include <vector>
@@ -13,6 +15,17 @@ namespace cycloid
 {
   namespace analytic
   {
+    /**
+     * @brief What the analytical model reads from the parameter file.
+     */
+    struct ModelSettings
+    {
+      geometry::GeometryParameters   geometry;
+      parameters::MaterialParameters material;
+      parameters::SceneParameters    scene;
+      AnalyticParameters             analytic;
+    };
+
     /**
      * @brief The analytical model of the whole stage: exact clearances and
      * arms from the geometry, a pair-stiffness model chosen by name, and
@@ -23,7 +36,7 @@ namespace cycloid
     {
     public:
       /** Builds the geometry (validating it) and the pair model. */
-      explicit StageModel(const parameters::AllParameters &parameters);
+      explicit StageModel(const ModelSettings &settings);
 
       /** The geometry. */
       const geometry::CycloidGeometry &
@@ -64,13 +77,21 @@ namespace cycloid
         return distribution.solve(pins, torque, beta_guess);
       }
 
+      /**
+       * The solved load state @p load at crank angle @p psi [rad] as the
+       * stage state every model returns (cost figures other than the
+       * iterations are the caller's).
+       */
+      results::StageState
+      stage_state(const LoadState &load, const double psi) const;
+
       /** Distance from a disc-frame point to the load-introduction
        * surface (nearest crank hole, or the bore) [mm]. */
       double
       disc_depth(const dealii::Point<2> &p_disc) const;
 
     private:
-      const parameters::AllParameters     prm;
+      const ModelSettings                 prm;
       const geometry::CycloidGeometry     geo;
       std::unique_ptr<PairStiffnessModel> model;
       LoadDistribution                    distribution;

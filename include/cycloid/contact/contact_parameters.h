@@ -3,6 +3,9 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <cycloid/contact/contact_problem.h>
+#include <cycloid/elasticity/elasticity.h>
+
 #include <string>
 
 namespace cycloid
@@ -20,12 +23,14 @@ namespace cycloid
       /** Flank vertices closer than this to a pin surface are contact
        * candidates [mm]. */
       double search_distance = 0.1;
-      /** Constraint discretisation: "mortar" or "node-to-surface". */
-      std::string formulation = "mortar";
+      /** Constraint discretisation (`Formulation`: mortar or
+       * node-to-surface). */
+      Formulation formulation = Formulation::mortar;
       /** Largest accepted relative equilibrium residual [-]. */
       double residual_tolerance = 1e-6;
-      /** Linear solver: "cg-amg", "cg-amg-translations" or "direct". */
-      std::string linear_solver = "cg-amg";
+      /** Linear solver (`Linear solver`: cg-amg, cg-amg-translations or
+       * direct). */
+      elasticity::LinearSolver linear_solver = elasticity::LinearSolver::cg_amg;
       /** Relative tolerance of the iterative solver [-]. */
       double solver_tolerance = 1e-10;
 

@@ -6,7 +6,8 @@
 
 #include <cycloid/contact/contact_problem.h>
 #include <cycloid/geometry/cycloid_geometry.h>
-#include <cycloid/parameters/all_parameters.h>
+#include <cycloid/parameters/material.h>
+#include <cycloid/parameters/scene.h>
 
 #include <map>
 #include <memory>
@@ -67,11 +68,19 @@ namespace cycloid
         std::vector<dealii::types::global_dof_index> &held) const = 0;
     };
 
+    /** What the pin models read from the parameter file. */
+    struct PinModelSettings
+    {
+      geometry::GeometryParameters   geometry;
+      parameters::MaterialParameters material;
+      parameters::SceneParameters    scene;
+    };
+
     /** The pin model of the prm's `Scene` (throws naming the entries for a
      * combination that does not exist). */
     template <int dim>
     std::unique_ptr<PinModel<dim>>
-    create_pin_model(const parameters::AllParameters &prm);
+    create_pin_model(const PinModelSettings &settings);
   } // namespace contact
 } // namespace cycloid
 

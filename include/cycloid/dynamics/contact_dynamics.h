@@ -4,6 +4,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <cycloid/contact/contact_problem.h>
+#include <cycloid/dynamics/transient_parameters.h>
 
 #include <iosfwd>
 #include <string>
@@ -12,25 +13,6 @@ namespace cycloid
 {
   namespace dynamics
   {
-    /** Time schemes of ContactDynamics. */
-    enum class Scheme
-    {
-      /** Trapezoidal rule (beta = 1/4, gamma = 1/2), contact enforced on
-       * the displacement at the end of the step. */
-      newmark,
-      /** Deuflhard-Krause-Ertel (2008): the predictor u_n + dt v_n is
-       * projected onto the admissible set in the mass norm, then an
-       * implicit trapezoidal step from the projected predictor; the contact
-       * force of the previous step is dropped. */
-      contact_stabilised,
-      /** Chung-Hulbert generalized-alpha with a spectral radius. */
-      generalized_alpha
-    };
-
-    /** The scheme named by @p name (as in prm subsection Transient). */
-    Scheme
-    parse_scheme(const std::string &name);
-
     /** Settings of ContactDynamics. */
     struct DynamicsSettings
     {

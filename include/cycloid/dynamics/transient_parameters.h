@@ -9,6 +9,25 @@ namespace cycloid
 {
   namespace dynamics
   {
+    /** Time schemes of ContactDynamics (`Transient/Scheme`). */
+    enum class Scheme
+    {
+      /** Trapezoidal rule (beta = 1/4, gamma = 1/2), contact enforced on
+       * the displacement at the end of the step. */
+      newmark,
+      /** Deuflhard-Krause-Ertel (2008): the predictor u_n + dt v_n is
+       * projected onto the admissible set in the mass norm, then an
+       * implicit trapezoidal step from the projected predictor; the contact
+       * force of the previous step is dropped. */
+      contact_stabilised,
+      /** Chung-Hulbert generalized-alpha with a spectral radius. */
+      generalized_alpha
+    };
+
+    /** The scheme named by @p name (as in prm subsection Transient). */
+    Scheme
+    parse_scheme(const std::string &name);
+
     /**
      * @brief Time integration of elastodynamics with contact (subsection
      * `Transient`): scheme, step, crank speed, load ramp, damping, output
@@ -17,8 +36,11 @@ namespace cycloid
      */
     struct TransientParameters
     {
-      /** newmark | contact-stabilised | generalized-alpha. */
-      std::string scheme = "contact-stabilised";
+      /** The time scheme. */
+      Scheme scheme = Scheme::contact_stabilised;
+      /** Its name as in the prm: newmark | contact-stabilised |
+       * generalized-alpha. */
+      std::string scheme_name = "contact-stabilised";
       /** Spectral radius at infinite frequency of generalized-alpha [-]. */
       double spectral_radius = 0.8;
       /** Time step [s]. */

@@ -1,6 +1,7 @@
 #ifndef cycloid_parameters_loading_h
 #define cycloid_parameters_loading_h
 
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <vector>
@@ -32,12 +33,19 @@ namespace cycloid
           return torques;
         std::vector<double> r;
         for (const double d : rotations_deg)
-          r.push_back(d * 3.14159265358979323846 / 180.);
+          r.push_back(d * dealii::numbers::PI / 180.);
         return r;
       }
       /** Crank angle of a single state, and start of a phase sweep
        * [degrees]. */
       double crank_angle_deg = 0.;
+      /** Crank angle of a single state [rad]. */
+      double
+      crank_angle() const
+      {
+        return crank_angle_deg * dealii::numbers::PI / 180.;
+      }
+
       /** Number of crank angles over one mesh period (1: only
        * `Crank angle`). */
       unsigned int n_phases = 1;

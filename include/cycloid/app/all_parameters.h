@@ -1,13 +1,15 @@
-#ifndef cycloid_parameters_all_parameters_h
-#define cycloid_parameters_all_parameters_h
+#ifndef cycloid_app_all_parameters_h
+#define cycloid_app_all_parameters_h
 
 #include <deal.II/base/parameter_handler.h>
 
 #include <cycloid/analytic/analytic_parameters.h>
+#include <cycloid/analytic/stage_model.h>
 #include <cycloid/contact/contact_parameters.h>
 #include <cycloid/dynamics/transient_parameters.h>
 #include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/mesh/mesh_parameters.h>
+#include <cycloid/mesh/stage_mesh.h>
 #include <cycloid/parameters/loading.h>
 #include <cycloid/parameters/material.h>
 #include <cycloid/parameters/run.h>
@@ -17,20 +19,22 @@
 
 namespace cycloid
 {
-  namespace parameters
+  namespace app
   {
     /**
      * @brief Every parameter of a run, grouped by subsection; each group
-     * declares and parses its own subsection. Passed whole to the run
-     * modes.
+     * declares and parses its own subsection. Only the app layer sees the
+     * whole set: it hands each subsystem the typed settings it needs
+     * (model_settings(), mesh_settings(), and the run settings built in
+     * app/run.cc), so no subsystem depends on the parameters of another.
      */
     struct AllParameters
     {
-      RunParameters                run;
-      geometry::GeometryParameters geometry;
-      MaterialParameters           material;
-      LoadingParameters            loading;
-      SceneParameters              scene;
+      parameters::RunParameters      run;
+      geometry::GeometryParameters   geometry;
+      parameters::MaterialParameters material;
+      parameters::LoadingParameters  loading;
+      parameters::SceneParameters    scene;
       analytic::AnalyticParameters analytic;
       mesh::MeshParameters         mesh;
       contact::ContactParameters   contact;
@@ -51,8 +55,22 @@ namespace cycloid
        */
       static AllParameters
       read(const std::string &filename);
+
+      /** The settings of the analytical model. */
+      analytic::ModelSettings
+      model_settings() const
+      {
+        return {geometry, material, scene, analytic};
+      }
+
+      /** The settings of the mesh. */
+      mesh::MeshSettings
+      mesh_settings() const
+      {
+        return {geometry, scene, mesh};
+      }
     };
-  } // namespace parameters
+  } // namespace app
 } // namespace cycloid
 
 #endif

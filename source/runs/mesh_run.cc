@@ -5,12 +5,12 @@
 
 #include <deal.II/distributed/shared_tria.h>
 
-#include <cycloid/app/run.h>
 #include <cycloid/mesh/stage_mesh.h>
+#include <cycloid/runs/mesh_run.h>
 #include <cycloid/postprocess/mesh_output.h>
+#include <cycloid/results/stage_state.h>
 
 #include <chrono>
-#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -18,21 +18,24 @@
 
 namespace cycloid
 {
-  namespace app
+  namespace runs
   {
     template <int dim>
+    MeshRun<dim>::MeshRun(const Settings &settings, const MPI_Comm comm)
+      : settings(settings)
+      , comm(comm)
+    {}
+
+
+
+    template <int dim>
     void
-    run_mesh(const parameters::AllParameters &prm, const MPI_Comm comm)
+    MeshRun<dim>::run()
     {
       const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-      const std::string &dir = prm.run.output_directory;
-      if (root)
-        std::filesystem::create_directories(dir);
-      dealii::Utilities::MPI::sum(0, comm);
-
-      const double psi =
-        prm.loading.crank_angle_deg * dealii::numbers::PI / 180.;
-      const auto start = std::chrono::steady_clock::now();
+      const std::string &dir   = settings.output_directory;
+      const auto        &scene = settings.mesh.scene;
+      const auto         start = std::chrono::steady_clock::now();
       // Every rank holds the whole (coarse and refined) mesh, partitioned
       // with METIS; see doc/mesh.md for why not p4est or a fully
       // distributed triangulation.
@@ -41,17 +44,7 @@ namespace cycloid
         dealii::Triangulation<dim>::limit_level_difference_at_vertices,
         false,
         dealii::parallel::shared::Triangulation<dim>::partition_metis);
-      mesh::create_stage_mesh(
-        mesh::MeshSettings{prm.geometry, prm.scene, prm.mesh},
-        mesh::MeshRequest{psi,
-                          0.,
-                          prm.mesh.refine_loaded_side_only ?
-                            mesh::common_sign(prm.loading.load_values()) :
-                            0,
-                          prm.mesh.write_msh ?
-                            prm.run.output_directory + "/stage.msh" :
-                            ""},
-        tria);
+      mesh::create_stage_mesh(settings.mesh, settings.request, tria);
       const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
@@ -100,15 +93,18 @@ namespace cycloid
                    << " cells";
           for (const auto &s : stats)
             {
-              (s.material_id <= 1               ? disc_cells :
+              (mesh::ids::is_disc(s.material_id) ? disc_cells :
                mesh::ids::is_pin(s.material_id) ? pin_cells :
                                                   housing_cells) += s.n_cells;
               max_aspect = std::max(max_aspect, s.max_aspect_ratio);
             }
           std::cout << "cycloid-contact: " << dim << "D mesh of "
-                    << prm.scene.n_discs << " disc(s), " << prm.geometry.n_pins
+                    << scene.n_discs << " disc(s), "
+                    << settings.mesh.geometry.n_pins
                     << " pins" << (housing_cells > 0 ? ", housing" : "")
-                    << " at crank angle " << prm.loading.crank_angle_deg
+                    << " at crank angle "
+                    << settings.request.crank_angle *
+                         results::units::deg_per_rad
                     << " deg on "
                     << dealii::Utilities::MPI::n_mpi_processes(comm)
                     << " rank(s) (METIS partition)\n"
@@ -137,9 +133,7 @@ namespace cycloid
           "inspection."));
     }
 
-    template void
-    run_mesh<2>(const parameters::AllParameters &, const MPI_Comm);
-    template void
-    run_mesh<3>(const parameters::AllParameters &, const MPI_Comm);
-  } // namespace app
+    template class MeshRun<2>;
+    template class MeshRun<3>;
+  } // namespace runs
 } // namespace cycloid

@@ -1,0 +1,157 @@
+#ifndef cycloid_postprocess_report_h
+#define cycloid_postprocess_report_h
+
+#include <cycloid/results/stage_state.h>
+
+#include <cstdint>
+#include <fstream>
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <mpi.h>
+
+namespace cycloid
+{
+  namespace postprocess
+  {
+    /**
+     * @brief One row of `energy.csv` (transient runs): energies and works
+     * for the whole tooth width [J], accumulated from t = 0.
+     */
+    struct EnergyRow
+    {
+      unsigned int step         = 0;
+      double       time_s       = 0;
+      double       kinetic      = 0;
+      double       elastic      = 0;
+      double       external     = 0; ///< load surface + moving obstacles
+      double       bore_work    = 0;
+      double       contact_work = 0;
+      double       dissipated   = 0;
+      /** E_kin + E_el + D - W - E_0 [J]. */
+      double balance = 0;
+      /** balance over the largest energy level reached [-]. */
+      double relative_balance = 0;
+      /** Largest penetration of a contact node [um]. */
+      double max_penetration_um = 0;
+      /** Angular momentum of the discs about their centres [N m s]. */
+      double angular_momentum = 0;
+    };
+
+    /** Peak resident memory (VmHWM) summed over the ranks of @p comm [MB]
+     * (collective). */
+    double
+    peak_memory_MB(const MPI_Comm comm);
+
+    /** Mean, minimum, maximum and (max - min) / mean of @p values. */
+    struct Statistics
+    {
+      double mean = 0, min = 0, max = 0, fluctuation = 0;
+
+      /** The statistics of @p values (not empty). */
+      explicit Statistics(const std::vector<double> &values);
+    };
+
+    /**
+     * @brief The one place where solved states become files and console
+     * lines, for every model and run: `stiffness.csv` and `pin_forces.csv`
+     * (one header line, then rows flushed as each state is written, so a
+     * run that stops early leaves valid files), `fluctuation.csv` when the
+     * states cover several crank angles, `energy.csv` for transient runs,
+     * and the one-line console summary of a state. Unit conversions from
+     * the state's units to the columns' happen here (results::units).
+     *
+     * Only rank 0 of the communicator writes or prints. The output
+     * directory exists already (the app makes it once).
+     */
+    class Report
+    {
+    public:
+      /** What the report writes. */
+      struct Options
+      {
+        /** Output directory (must exist). */
+        std::string directory = "output";
+        /** The states' loads are rotations (fluctuation.csv's first
+         * column) rather than torques. */
+        bool rotation_control = false;
+        /** Write energy.csv (transient runs). */
+        bool energy = false;
+        /** Write fluctuation.csv when the states of a load cover several
+         * crank angles (phase sweeps; not for a transient, whose load
+         * changes from step to step). */
+        bool fluctuation = true;
+        /** Continue the files of a run being resumed instead of starting
+         * them: truncate each to the size in @p resume_sizes (the sizes at
+         * the checkpoint, in the order of files()), then append. */
+        bool                       resume = false;
+        std::vector<std::uintmax_t> resume_sizes;
+      };
+
+      /** Open (or, resuming, truncate and reopen) the files on rank 0. */
+      Report(const Options &options, const MPI_Comm comm);
+
+      /** The CSV files this report writes, in a fixed order. */
+      std::vector<std::string>
+      files() const;
+
+      /** Their current sizes in bytes (for a checkpoint; rank 0). */
+      std::vector<std::uintmax_t>
+      file_sizes() const;
+
+      /**
+       * Append @p state to stiffness.csv and pin_forces.csv, and keep its
+       * stiffness for fluctuation.csv under its load value @p load (torque
+       * [N m] or rotation [rad]: the states of one load over the crank
+       * angles form one series).
+       */
+      void
+      write(const results::StageState &state, const double load);
+
+      /** Append @p row to energy.csv. */
+      void
+      write(const EnergyRow &row, const results::StageState &state);
+
+      /** Print the one-line summary of @p state after @p prefix. */
+      void
+      print(const results::StageState &state, const std::string &prefix) const;
+
+      /** If the states covered more than one crank angle: write
+       * fluctuation.csv and print the stiffness over the period per load.
+       * Then name the files written. */
+      void
+      finish() const;
+
+      /** Header line of stiffness.csv. */
+      static std::string
+      stiffness_header();
+
+      /** Header line of pin_forces.csv. */
+      static std::string
+      pin_forces_header();
+
+      /** Header line of energy.csv. */
+      static std::string
+      energy_header();
+
+    private:
+      /** The stiffness of one load over the crank angles, in order. */
+      struct Series
+      {
+        double              load = 0;
+        std::vector<double> crank, k_tangent, k_secant;
+      };
+
+      const Options        options;
+      const bool           active;
+      std::ofstream        stiffness;
+      std::ofstream        pin_forces;
+      std::ofstream        energy;
+      std::vector<Series>  series;
+    };
+  } // namespace postprocess
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,156 @@
+#ifndef cycloid_results_stage_state_h
+#define cycloid_results_stage_state_h
+
+#include <deal.II/base/numbers.h>
+#include <deal.II/base/point.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace cycloid
+{
+  /**
+   * The result every model of the stage returns (analytic, FE, and any
+   * model added later), and the unit conversions between the models'
+   * internal units and the reported ones. Nothing here knows how a state
+   * was computed: postprocess::Report turns states into files and console
+   * lines, so a new model gets every output by filling a StageState.
+   */
+  namespace results
+  {
+    /**
+     * Unit conversions, in one place. Models compute in mm, N, N mm and
+     * rad; the prm and the CSV files use N m, um, degrees and arcminutes.
+     */
+    namespace units
+    {
+      /** pi. */
+      constexpr double pi = dealii::numbers::PI;
+      /** Radians per degree. */
+      constexpr double rad_per_deg = pi / 180.;
+      /** Degrees per radian. */
+      constexpr double deg_per_rad = 180. / pi;
+      /** Radians per arcminute. */
+      constexpr double rad_per_arcmin = pi / (180. * 60.);
+      /** N mm per N m (torques, and J per N mm inverted). */
+      constexpr double Nmm_per_Nm = 1e3;
+      /** N m per N mm (also J per N mm). */
+      constexpr double Nm_per_Nmm = 1e-3;
+      /** Micrometres per millimetre. */
+      constexpr double um_per_mm = 1e3;
+    } // namespace units
+
+    /**
+     * @brief One pin against one disc in a solved state, for the whole
+     * tooth width. Forces in N, lengths in mm, angles in rad.
+     */
+    struct PinState
+    {
+      unsigned int disc = 0;
+      unsigned int pin  = 0;
+      /** Force of the pin on the disc, housing frame [N]. */
+      double fx = 0;
+      double fy = 0;
+      /** Its magnitude [N]. */
+      double fn = 0;
+      /** Signed moment arm about the disc centre; positive arms resist a
+       * positive torque [mm]. */
+      double arm = 0;
+      /** Initial normal gap before load [mm]. */
+      double clearance = 0;
+      /** Tooth phase, 0 at the tooth root [rad]. */
+      double phase = 0;
+      /** Approach beta * arm - clearance (the models may clip it at 0)
+       * [mm]. */
+      double approach = 0;
+      /** Pair stiffness dF/d approach (analytic models; 0 otherwise)
+       * [N/mm]. */
+      double pair_stiffness = 0;
+      /** Unloaded contact point, housing frame [mm]. */
+      dealii::Point<2> contact_point;
+      /** Contact half-width of the model (FE: from the extent of the
+       * active nodes; analytic: Hertz's) [mm]. */
+      double contact_halfwidth = 0;
+      /** Hertz line-contact half-width at this force [mm]. */
+      double hertz_halfwidth = 0;
+    };
+
+    /**
+     * @brief A solved load state of the stage: one crank angle, one load,
+     * all discs (they share one rotation beta) and all pins, for the whole
+     * tooth width, with what it cost.
+     */
+    struct StageState
+    {
+      /** Index of the state in the run (set by the run). */
+      unsigned int step = 0;
+      /** Crank angle [rad]. */
+      double crank = 0;
+      /** Output torque of the stage [N m]. */
+      double torque = 0;
+      /** Rotation beta of the discs from the kinematic position [rad]. */
+      double rotation = 0;
+      /** Tangent stiffness dT/dbeta [N m/rad] (NaN where not defined). */
+      double k_tangent = 0;
+      /** Rigid take-up rotation (lost motion before the first pin on the
+       * loaded side touches) [rad]. */
+      double takeup = 0;
+      /** Reaction torque sum F * arm [N m]. */
+      double reaction_torque = 0;
+      /** Every pin of every disc, disc-major. */
+      std::vector<PinState> pins;
+
+      /** Active-set (FE) or torque-balance (analytic) iterations. */
+      unsigned int iterations = 0;
+      /** Linear-solver iterations of the state. */
+      unsigned long linear_iterations = 0;
+      /** Degrees of freedom (0 for models without a mesh). */
+      unsigned long dofs = 0;
+      /** Wall time of the state [s]. */
+      double wall_s = 0;
+      /** Peak resident memory of the run so far, summed over the ranks
+       * [MB]. */
+      double peak_memory_MB = 0;
+
+      /** Secant stiffness T / beta [N m/rad]. */
+      double
+      k_secant() const
+      {
+        return rotation != 0 ? torque / rotation :
+                               std::numeric_limits<double>::quiet_NaN();
+      }
+
+      /** Secant stiffness after the take-up, T / (beta - takeup)
+       * [N m/rad]. */
+      double
+      k_secant_elastic() const
+      {
+        return rotation != takeup ? torque / (rotation - takeup) :
+                                    std::numeric_limits<double>::quiet_NaN();
+      }
+
+      /** Pins carrying force, over all discs. */
+      unsigned int
+      pins_in_contact() const
+      {
+        return std::count_if(pins.begin(), pins.end(), [](const PinState &p) {
+          return p.fn > 0;
+        });
+      }
+
+      /** Largest pin force [N]. */
+      double
+      max_pin_force() const
+      {
+        double f = 0;
+        for (const PinState &p : pins)
+          f = std::max(f, p.fn);
+        return f;
+      }
+    };
+  } // namespace results
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,52 @@
+#ifndef cycloid_runs_analytic_run_h
+#define cycloid_runs_analytic_run_h
+
+#include <cycloid/analytic/stage_model.h>
+#include <cycloid/parameters/loading.h>
+
+#include <mpi.h>
+
+namespace cycloid
+{
+  /**
+   * The run modes: each composes a model (analytic::StageModel or
+   * stage::StageScene) with the load states of the prm and hands every
+   * solved state to postprocess::Report. A run is built first (which
+   * checks the scene and throws for one that cannot be solved), then the
+   * app makes the output directory, then run() solves and writes.
+   */
+  namespace runs
+  {
+    /**
+     * @brief `Run = analytic`: the analytical model over every crank angle
+     * of `Loading` and every torque (torques warm-started from the
+     * previous state), on rank 0 only (other ranks check the geometry
+     * alike, then wait).
+     */
+    class AnalyticRun
+    {
+    public:
+      /** What the run reads from the parameter file. */
+      struct Settings
+      {
+        analytic::ModelSettings       model;
+        parameters::LoadingParameters loading;
+        std::string                   output_directory = "output";
+      };
+
+      /** Build the model (checking the geometry). */
+      AnalyticRun(const Settings &settings, const MPI_Comm comm);
+
+      /** Solve and write every state. */
+      void
+      run();
+
+    private:
+      const Settings             settings;
+      const MPI_Comm             comm;
+      const analytic::StageModel model;
+    };
+  } // namespace runs
+} // namespace cycloid
+
+#endif

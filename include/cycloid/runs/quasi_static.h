@@ -1,0 +1,60 @@
+#ifndef cycloid_runs_quasi_static_h
+#define cycloid_runs_quasi_static_h
+
+#include <cycloid/parameters/loading.h>
+#include <cycloid/stage/stage_scene.h>
+
+#include <memory>
+
+#include <mpi.h>
+
+namespace cycloid
+{
+  namespace runs
+  {
+    /** What an FE run of load states reads from the parameter file. */
+    struct FeRunSettings
+    {
+      stage::StageSettings          stage;
+      parameters::LoadingParameters loading;
+      /** Write the solution fields of every state. */
+      bool write_solution = true;
+    };
+
+    /** The mesh request of a run with @p settings at crank angle @p psi
+     * [rad] (the loaded side from the sign of its loads). */
+    mesh::MeshRequest
+    mesh_request(const FeRunSettings &settings, const double psi);
+
+    /**
+     * @brief `Run = quasi-static`: the FE contact of the scene at
+     * `Loading/Crank angle`, for each load in turn (each warm-started from
+     * the previous); writes stiffness.csv, pin_forces.csv and the solution
+     * fields.
+     */
+    template <int dim>
+    class QuasiStaticRun
+    {
+    public:
+      /** Build the scene (checking it: no files for a scene that cannot be
+       * solved). */
+      QuasiStaticRun(const FeRunSettings &settings, const MPI_Comm comm);
+
+      /** Solve and write every load state. */
+      void
+      run();
+
+    private:
+      /** Print what the run does (rank 0) and give the scene's settings:
+       * the announcement comes before the scene is built. */
+      static const stage::StageSettings &
+      announce(const FeRunSettings &settings, const MPI_Comm comm);
+
+      const FeRunSettings      settings;
+      const MPI_Comm           comm;
+      stage::StageScene<dim>   scene;
+    };
+  } // namespace runs
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,260 @@
+#ifndef cycloid_stage_stage_scene_h
+#define cycloid_stage_stage_scene_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/distributed/shared_tria.h>
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <cycloid/analytic/stage_model.h>
+#include <cycloid/contact/contact_parameters.h>
+#include <cycloid/contact/contact_problem.h>
+#include <cycloid/contact/pin_model.h>
+#include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/mesh/mesh_parameters.h>
+#include <cycloid/mesh/stage_mesh.h>
+#include <cycloid/parameters/material.h>
+#include <cycloid/parameters/scene.h>
+#include <cycloid/postprocess/solution_record.h>
+#include <cycloid/results/stage_state.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace cycloid
+{
+  /**
+   * The FE model of the stage, as one object that every FE run composes.
+   */
+  namespace stage
+  {
+    /**
+     * @brief What a StageScene reads from the parameter file: the stage,
+     * its materials, the scene, the mesh, the contact solver, and the
+     * analytical model (the warm start of a first state).
+     */
+    struct StageSettings
+    {
+      geometry::GeometryParameters   geometry;
+      parameters::MaterialParameters material;
+      parameters::SceneParameters    scene;
+      mesh::MeshParameters           mesh;
+      contact::ContactParameters     contact;
+      analytic::AnalyticParameters   analytic;
+      /** The loads of solve() are rotations [rad], not torques [N m]. */
+      bool rotation_control = false;
+      /** Where the solution fields go. */
+      std::string output_directory = "output";
+
+      /** The settings of the analytical model of the same stage. */
+      analytic::ModelSettings
+      model_settings() const;
+
+      /** The settings of the mesh of the same stage. */
+      mesh::MeshSettings
+      mesh_settings() const;
+    };
+
+    /** One line describing the scene, e.g. "2D, 1 disc(s), elastic
+     * pins". */
+    std::string
+    description(const StageSettings &settings);
+
+    /** Active-set flags with node positions, to warm-start another
+     * StageScene (another crank angle) at the same load. */
+    template <int dim>
+    using ActiveSetSnapshot =
+      std::vector<std::pair<contact::SlaveNode<dim>, bool>>;
+
+    /**
+     * @brief The FE model of the cycloid stage: the scene's discs (1 or 2;
+     * 2D plane strain or 3D) against its pins (rigid, or elastic and held at
+     * their cores or in a meshed housing), loaded by a rigid rotation beta
+     * of each disc's crank holes (or bore) about the disc's centre, one beta
+     * for both discs.
+     *
+     * It owns the mesh at one placement of the discs, the FE system and
+     * contact problem on it, the pin model and the load field, and offers
+     * what every run needs: place the discs (place_discs()), solve a load
+     * state (solve()) and turn a contact result into the stage's state
+     * (state()). Runs (quasi-static, phase sweep, transient) use it; none
+     * derives from it.
+     *
+     * Stages, each timed (step-42's layout): make grid, setup system (DoFs,
+     * contact nodes, supports, load), solve (active set), refine at
+     * contacts (adaptive cycles), pin forces and output results.
+     *
+     * Pin supports (contact::PinModel):
+     * - `axis`: every DoF within `Pin core radius` of a pin's axis is held
+     *   (a rigid core; a line or point constraint would make the pin's
+     *   compliance mesh dependent);
+     * - `housing`: the housing ring is meshed, its outer surface is held and
+     *   each groove (seat) node is glued to its pin's surface in every
+     *   component (no slip in the seat; a frictionless seat would leave
+     *   each pin free to spin about its axis).
+     * Rigid pins hold every pin DoF. The contact problem works per unit
+     * thickness in 2D; states are for the whole tooth width.
+     */
+    template <int dim>
+    class StageScene
+    {
+    public:
+      /** Mesh the scene as @p request asks (placement, crank sweep, loaded
+       * side), and set up the contact problem on it. Throws, naming the
+       * entry, for a scene that cannot be solved. */
+      StageScene(const StageSettings     &settings,
+                 const mesh::MeshRequest &request,
+                 const MPI_Comm           comm);
+
+      /**
+       * Place the discs rigidly at crank angle @p psi [rad] while the mesh
+       * stays at the request's crank angle (transient runs: the discs follow
+       * the crank). Gaps, normals and master points are recomputed;
+       * displacements stay in the mesh axes.
+       */
+      void
+      place_discs(const double psi);
+
+      /**
+       * Solve for output torque @p load [N m] (or, with rotation control,
+       * for the rotation @p load [rad]), warm-started from the previous
+       * state (or for the first from the analytical model's rotation), with
+       * `Mesh/Adaptive refinement cycles` refinements at the active contact.
+       */
+      results::StageState
+      solve(const double load);
+
+      /**
+       * The stage's state for a contact result @p result of the current
+       * contact problem solved for @p load (as in solve()): pin forces in
+       * the housing frame, arms, clearances, contact widths, torque, beta
+       * and tangent for the whole tooth width. The cost figures other than
+       * iterations and DoFs are the caller's to fill (solve() does).
+       */
+      results::StageState
+      state(const contact::ContactState &result, const double load) const;
+
+      /** Crank angle of the discs' current placement [rad]. */
+      double
+      crank_angle() const
+      {
+        return psi;
+      }
+
+      /** The active set with node positions (see warm_start()). */
+      ActiveSetSnapshot<dim>
+      active_set_snapshot() const;
+
+      /** Warm-start the next solve from another state's active set: each
+       * node takes the flag of the nearest node of that state on the same
+       * disc and pin (empty: no effect). */
+      void
+      warm_start(const ActiveSetSnapshot<dim> &snapshot);
+
+      /** Write the last state as solution-NNNN.pvtu for state @p step and
+       * add it to @p record, which is rewritten as solution.pvd. */
+      void
+      output_results(const unsigned int           step,
+                     postprocess::SolutionRecord &record);
+
+      /** The contact problem, for a time scheme that steps it. */
+      contact::ContactProblem<dim> &
+      contact_problem()
+      {
+        return *contact;
+      }
+
+      /** The contact problem (energies, mass products). */
+      const contact::ContactProblem<dim> &
+      contact_problem() const
+      {
+        return *contact;
+      }
+
+      /** Factor from the contact problem's forces (per unit thickness in
+       * 2D) to the whole stage: the tooth width in 2D, 1 in 3D. */
+      double
+      width_scale() const;
+
+      /** Torque @p torque [N m] of the stage as the contact problem's load
+       * (N mm, per unit thickness in 2D). */
+      double
+      model_torque(const double torque) const;
+
+      /** The contact problem's generalised reaction @p reaction as the
+       * stage's torque [N m]. */
+      double
+      stage_torque(const double reaction) const;
+
+      /** The discs' unit rigid rotation about their centres at the mesh
+       * placement (owned entries; zero on other bodies). */
+      const dealii::TrilinosWrappers::MPI::Vector &
+      rotation_field() const
+      {
+        return rotation;
+      }
+
+      /** Timer of this scene's stages (a time scheme adds its own). */
+      dealii::TimerOutput &
+      timer()
+      {
+        return timing;
+      }
+
+      /** Print the timing summary of this scene's stages (rank 0). */
+      void
+      print_timing() const
+      {
+        timing.print_summary();
+      }
+
+    private:
+      void
+      make_grid(const mesh::MeshRequest &request);
+      void
+      setup_contact();
+      void
+      setup_system();
+      contact::ContactState
+      solve_state(const double load);
+      void
+      refine_at_contacts();
+      void
+      compute_rotation_field();
+      /** First state: the active set that the analytical model's rotation
+       * for @p load closes. */
+      void
+      initialise_active_set(const double load);
+      /** Per disc and pin: force sums in the housing frame and moment. */
+      void
+      sum_pin_forces(std::vector<results::PinState> &pins) const;
+      /** Half-width of the active contact of disc @p d on pin @p j [mm]. */
+      double
+      contact_halfwidth(const unsigned int      d,
+                        const unsigned int      j,
+                        const dealii::Point<2> &contact_point) const;
+
+      const StageSettings                          settings;
+      const MPI_Comm                               comm;
+      const geometry::CycloidGeometry              geo;
+      const analytic::StageModel                   model;
+      /** Crank angle of the mesh [rad]. */
+      const double                                 psi_mesh;
+      /** Crank angle of the discs' placement [rad]. */
+      double                                       psi;
+      dealii::ConditionalOStream                   pcout;
+      mutable dealii::TimerOutput                  timing;
+      dealii::parallel::shared::Triangulation<dim> tria;
+      std::unique_ptr<contact::PinModel<dim>>      pin_model;
+      std::unique_ptr<contact::ContactProblem<dim>> contact;
+      dealii::TrilinosWrappers::MPI::Vector        rotation;
+      bool                                         warm = false;
+    };
+  } // namespace stage
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,63 @@
+#include <deal.II/base/exceptions.h>
+
+#include <cycloid/app/all_parameters.h>
+
+#include <fstream>
+
+namespace cycloid
+{
+  namespace app
+  {
+    void
+    AllParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      parameters::RunParameters::declare_parameters(prm);
+      geometry::GeometryParameters::declare_parameters(prm);
+      parameters::MaterialParameters::declare_parameters(prm);
+      parameters::LoadingParameters::declare_parameters(prm);
+      parameters::SceneParameters::declare_parameters(prm);
+      analytic::AnalyticParameters::declare_parameters(prm);
+      mesh::MeshParameters::declare_parameters(prm);
+      contact::ContactParameters::declare_parameters(prm);
+      dynamics::TransientParameters::declare_parameters(prm);
+    }
+
+
+
+    void
+    AllParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      run.parse_parameters(prm);
+      geometry.parse_parameters(prm);
+      material.parse_parameters(prm);
+      loading.parse_parameters(prm);
+      scene.parse_parameters(prm);
+      analytic.parse_parameters(prm);
+      mesh.parse_parameters(prm);
+      contact.parse_parameters(prm);
+      transient.parse_parameters(prm);
+      AssertThrow(scene.pin_core_radius < geometry.pin_radius,
+                  dealii::ExcMessage("Scene/Pin core radius must be smaller "
+                                     "than Geometry/Pin radius."));
+    }
+
+
+
+    AllParameters
+    AllParameters::read(const std::string &filename)
+    {
+      {
+        std::ifstream in(filename);
+        AssertThrow(in.good(),
+                    dealii::ExcMessage("cannot open the parameter file '" +
+                                       filename + "'."));
+      }
+      dealii::ParameterHandler prm;
+      declare_parameters(prm);
+      prm.parse_input(filename);
+      AllParameters result;
+      result.parse_parameters(prm);
+      return result;
+    }
+  } // namespace app
+} // namespace cycloid

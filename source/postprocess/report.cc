@@ -1,0 +1,275 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <cycloid/postprocess/report.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+namespace cycloid
+{
+  namespace postprocess
+  {
+    namespace u = results::units;
+
+    std::string
+    Report::stiffness_header()
+    {
+      return "step,crank_deg,torque_Nm,rotation_rad,K_secant_Nm_per_rad,"
+             "K_tangent_Nm_per_rad,pins_in_contact,active_set_iterations,dofs,"
+             "wall_s,K_secant_Nm_per_arcmin,K_tangent_Nm_per_arcmin,"
+             "takeup_rad,K_secant_elastic_Nm_per_rad,reaction_torque_Nm,"
+             "max_pin_force_N,linear_iterations,peak_memory_MB";
+    }
+
+
+
+    std::string
+    Report::pin_forces_header()
+    {
+      return "step,crank_deg,disc,pin,Fx_N,Fy_N,Fn_N,arm_mm,clearance_um,"
+             "phase_deg,approach_um,pair_stiffness_N_per_mm,contact_x_mm,"
+             "contact_y_mm,contact_halfwidth_um,hertz_halfwidth_um";
+    }
+
+
+
+    std::string
+    Report::energy_header()
+    {
+      return "step,time_s,kinetic_J,elastic_J,external_work_J,"
+             "active_set_iterations,crank_deg,torque_Nm,rotation_rad,"
+             "bore_work_J,contact_work_J,dissipated_J,balance_error_J,"
+             "relative_balance_error,max_penetration_um,wall_s,"
+             "angular_momentum_Nms";
+    }
+
+
+
+    double
+    peak_memory_MB(const MPI_Comm comm)
+    {
+      dealii::Utilities::System::MemoryStats stats;
+      dealii::Utilities::System::get_memory_stats(stats);
+      return dealii::Utilities::MPI::sum(static_cast<double>(stats.VmHWM),
+                                         comm) /
+             1024.;
+    }
+
+
+
+    Statistics::Statistics(const std::vector<double> &values)
+    {
+      const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+      for (const double x : values)
+        mean += x;
+      mean /= values.size();
+      min         = *lo;
+      max         = *hi;
+      fluctuation = (max - min) / mean;
+    }
+
+
+
+    Report::Report(const Options &options, const MPI_Comm comm)
+      : options(options)
+      , active(dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+    {
+      if (!active)
+        return;
+      const auto names = files();
+      AssertThrow(!options.resume ||
+                    options.resume_sizes.size() == names.size(),
+                  dealii::ExcInternalError());
+      std::vector<std::ofstream *> streams{&stiffness, &pin_forces};
+      std::vector<std::string>     headers{stiffness_header(),
+                                       pin_forces_header()};
+      if (options.energy)
+        {
+          streams.push_back(&energy);
+          headers.push_back(energy_header());
+        }
+      for (unsigned int i = 0; i < names.size(); ++i)
+        {
+          const std::string file = options.directory + "/" + names[i];
+          if (options.resume)
+            {
+              // A restart continues from the checkpoint: rows written after
+              // it are dropped.
+              std::error_code ec;
+              AssertThrow(std::filesystem::file_size(file, ec) >=
+                              options.resume_sizes[i] &&
+                            !ec,
+                          dealii::ExcMessage(
+                            "Transient/Resume: " + file +
+                            " is missing or shorter than at the checkpoint."));
+              std::filesystem::resize_file(file, options.resume_sizes[i]);
+              streams[i]->open(file, std::ios::app);
+            }
+          else
+            streams[i]->open(file);
+          AssertThrow(*streams[i],
+                      dealii::ExcMessage("cannot write to Output directory '" +
+                                         options.directory + "'."));
+          *streams[i] << std::setprecision(12);
+          if (!options.resume)
+            *streams[i] << headers[i] << std::endl;
+        }
+    }
+
+
+
+    std::vector<std::string>
+    Report::files() const
+    {
+      std::vector<std::string> names{"stiffness.csv", "pin_forces.csv"};
+      if (options.energy)
+        names.emplace_back("energy.csv");
+      return names;
+    }
+
+
+
+    std::vector<std::uintmax_t>
+    Report::file_sizes() const
+    {
+      std::vector<std::uintmax_t> sizes;
+      for (const auto &name : files())
+        {
+          std::error_code ec;
+          const auto n =
+            std::filesystem::file_size(options.directory + "/" + name, ec);
+          sizes.push_back(ec ? 0 : n);
+        }
+      return sizes;
+    }
+
+
+
+    void
+    Report::write(const results::StageState &s, const double load)
+    {
+      if (!active)
+        return;
+      const double crank_deg = s.crank * u::deg_per_rad;
+      stiffness << s.step << ',' << crank_deg << ',' << s.torque << ','
+                << s.rotation << ',' << s.k_secant() << ',' << s.k_tangent
+                << ',' << s.pins_in_contact() << ',' << s.iterations << ','
+                << s.dofs << ',' << s.wall_s << ','
+                << s.k_secant() * u::rad_per_arcmin << ','
+                << s.k_tangent * u::rad_per_arcmin << ',' << s.takeup << ','
+                << s.k_secant_elastic() << ',' << s.reaction_torque << ','
+                << s.max_pin_force() << ',' << s.linear_iterations << ','
+                << s.peak_memory_MB << '\n';
+      // (+ 0. turns a negative zero into 0 in the CSV.)
+      for (const results::PinState &p : s.pins)
+        pin_forces << s.step << ',' << crank_deg << ',' << p.disc << ','
+                   << p.pin << ',' << p.fx + 0. << ',' << p.fy + 0. << ','
+                   << p.fn << ',' << p.arm << ','
+                   << p.clearance * u::um_per_mm << ','
+                   << p.phase * u::deg_per_rad << ','
+                   << p.approach * u::um_per_mm << ',' << p.pair_stiffness
+                   << ',' << p.contact_point[0] << ',' << p.contact_point[1]
+                   << ',' << p.contact_halfwidth * u::um_per_mm << ','
+                   << p.hertz_halfwidth * u::um_per_mm << '\n';
+      stiffness.flush();
+      pin_forces.flush();
+
+      auto it = std::find_if(series.begin(), series.end(), [&](const Series &x) {
+        return x.load == load;
+      });
+      if (it == series.end())
+        {
+          series.push_back(Series{load, {}, {}, {}});
+          it = std::prev(series.end());
+        }
+      it->crank.push_back(s.crank);
+      it->k_tangent.push_back(s.k_tangent);
+      it->k_secant.push_back(s.k_secant());
+    }
+
+
+
+    void
+    Report::write(const EnergyRow &e, const results::StageState &s)
+    {
+      if (!active)
+        return;
+      energy << e.step << ',' << e.time_s << ',' << e.kinetic << ','
+             << e.elastic << ',' << e.external << ',' << s.iterations << ','
+             << s.crank * u::deg_per_rad << ',' << s.torque << ','
+             << s.rotation << ',' << e.bore_work << ',' << e.contact_work
+             << ',' << e.dissipated << ',' << e.balance << ','
+             << e.relative_balance << ',' << e.max_penetration_um << ','
+             << s.wall_s << ',' << e.angular_momentum << '\n';
+      energy.flush();
+    }
+
+
+
+    void
+    Report::print(const results::StageState &s, const std::string &prefix) const
+    {
+      if (!active)
+        return;
+      std::cout << prefix << "T " << s.torque << " N m, beta " << s.rotation
+                << " rad, K_secant " << s.k_secant() << ", K_tangent "
+                << s.k_tangent << " N m/rad ("
+                << s.k_tangent * u::rad_per_arcmin << " N m/arcmin), pins "
+                << s.pins_in_contact() << ", iterations " << s.iterations;
+      if (s.dofs > 0)
+        std::cout << ", dofs " << s.dofs;
+      std::cout << ", " << s.wall_s << " s" << std::endl;
+    }
+
+
+
+    void
+    Report::finish() const
+    {
+      if (!active)
+        return;
+      std::string written = "stiffness.csv, pin_forces.csv";
+      if (options.energy)
+        written += ", energy.csv";
+      const bool sweep = options.fluctuation && !series.empty() &&
+                         series.front().crank.size() > 1;
+      if (sweep)
+        {
+          written += ", fluctuation.csv";
+          std::ofstream out(options.directory + "/fluctuation.csv");
+          out << (options.rotation_control ? "rotation_rad" : "torque_Nm")
+              << ",n_phases,K_tangent_mean_Nm_per_rad,"
+                 "K_tangent_min_Nm_per_rad,K_tangent_max_Nm_per_rad,"
+                 "K_tangent_fluctuation,K_secant_mean_Nm_per_rad,"
+                 "K_secant_fluctuation,K_tangent_period_closure\n"
+              << std::setprecision(12);
+          for (const Series &x : series)
+            {
+              const Statistics kt(x.k_tangent), ks(x.k_secant);
+              // The first and last phase are one mesh period apart: their
+              // ratio shows how far the discretisation is from periodic.
+              const double closure = x.k_tangent.back() / x.k_tangent.front() - 1;
+              out << x.load << ',' << x.crank.size() << ',' << kt.mean << ','
+                  << kt.min << ',' << kt.max << ',' << kt.fluctuation << ','
+                  << ks.mean << ',' << ks.fluctuation << ',' << closure
+                  << '\n';
+              std::cout << "  " << (options.rotation_control ? "rotation " : "torque ")
+                        << x.load
+                        << (options.rotation_control ? " rad" : " N m")
+                        << ": K_tangent over the period mean " << kt.mean
+                        << ", min " << kt.min << ", max " << kt.max
+                        << " N m/rad; fluctuation (max-min)/mean "
+                        << kt.fluctuation << "; first vs last phase "
+                        << closure << std::endl;
+            }
+        }
+      std::cout << "  results in " << options.directory << "/: " << written
+                << std::endl;
+    }
+  } // namespace postprocess
+} // namespace cycloid

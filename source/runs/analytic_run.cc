@@ -1,0 +1,115 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <cycloid/postprocess/report.h>
+#include <cycloid/runs/analytic_run.h>
+
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace cycloid
+{
+  namespace runs
+  {
+    namespace u = results::units;
+
+    namespace
+    {
+      /** Seconds since @p start. */
+      double
+      seconds_since(const std::chrono::steady_clock::time_point start)
+      {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                             start)
+          .count();
+      }
+    } // namespace
+
+
+
+    AnalyticRun::AnalyticRun(const Settings &settings, const MPI_Comm comm)
+      : settings(settings)
+      , comm(comm)
+      , model(settings.model)
+    {}
+
+
+
+    void
+    AnalyticRun::run()
+    {
+      postprocess::Report report({settings.output_directory}, comm);
+      // Every rank checked the geometry (so a bad prm fails everywhere
+      // alike); only rank 0 computes and writes.
+      if (dealii::Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      const auto               &geo    = model.geometry();
+      const std::vector<double> angles =
+        settings.loading.crank_angles(geo.mesh_period());
+      const std::vector<double> &torques  = settings.loading.torques;
+      const unsigned int         n_states = angles.size() * torques.size();
+      std::cout << "cycloid-contact: analytic model '"
+                << model.pair_model().name()
+                << "', zp = " << settings.model.geometry.n_pins
+                << ", rp = " << geo.pin_circle_radius() << " mm, "
+                << settings.model.scene.n_discs << " disc(s), "
+                << angles.size() << " crank angle(s) x " << torques.size()
+                << " torque(s)" << std::endl;
+
+      unsigned int step    = 0;
+      double       beta    = 0;
+      double       total_s = 0;
+      for (const double psi : angles)
+        {
+          // The unloaded geometry of a crank angle serves all its torques;
+          // its cost goes to the first torque's wall time.
+          auto       start = std::chrono::steady_clock::now();
+          const auto pins  = model.unloaded_pins(psi);
+          double     geometry_s = seconds_since(start);
+          for (unsigned int t = 0; t < torques.size(); ++t, ++step)
+            {
+              start = std::chrono::steady_clock::now();
+              analytic::LoadState load;
+              try
+                {
+                  load = model.solve(pins, torques[t], beta);
+                }
+              catch (dealii::ExceptionBase &e)
+                {
+                  std::ostringstream info;
+                  e.print_info(info);
+                  AssertThrow(false,
+                              dealii::ExcMessage(
+                                "state " + std::to_string(step) +
+                                " (crank angle " +
+                                std::to_string(psi * u::deg_per_rad) +
+                                " deg, torque " + std::to_string(torques[t]) +
+                                " N m): " + info.str()));
+                }
+              beta = load.rotation;
+              results::StageState state = model.stage_state(load, psi);
+              state.step                = step;
+              state.wall_s              = seconds_since(start) + geometry_s;
+              geometry_s                = 0;
+              total_s += state.wall_s;
+              dealii::Utilities::System::MemoryStats stats;
+              dealii::Utilities::System::get_memory_stats(stats);
+              state.peak_memory_MB = stats.VmHWM / 1024.; // rank 0 only
+              report.write(state, torques[t]);
+              if (n_states <= 20 || step % std::max(1u, n_states / 10) == 0 ||
+                  step + 1 == n_states)
+                report.print(state,
+                             "  state " + std::to_string(step + 1) + "/" +
+                               std::to_string(n_states) + ": ");
+            }
+        }
+      report.finish();
+      std::cout << "  compute time " << total_s * 1e3 << " ms for "
+                << n_states << " states" << std::endl;
+    }
+  } // namespace runs
+} // namespace cycloid

@@ -1,0 +1,611 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature.h>
+
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/tria_accessor.h>
+#include <deal.II/grid/tria_iterator.h>
+
+#include <cycloid/analytic/pair_stiffness.h>
+#include <cycloid/postprocess/report.h>
+#include <cycloid/stage/stage_scene.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace cycloid
+{
+  namespace stage
+  {
+    namespace ids = mesh::ids;
+    namespace u   = results::units;
+    using Scene   = parameters::SceneParameters;
+
+    namespace
+    {
+      /** Component @p comp of the unit rigid rotation about @p centre at
+       * @p x: e_z x (x - c) = (-(y - cy), x - cx, 0). */
+      template <int dim>
+      double
+      unit_rotation(const dealii::Point<2>   &centre,
+                    const dealii::Point<dim> &x,
+                    const unsigned int        comp)
+      {
+        return comp == 0 ? -(x[1] - centre[1]) :
+               comp == 1 ? x[0] - centre[0] :
+                           0.;
+      }
+
+      /** FEValues at the support points of @p el's cells (node positions on
+       * the exact mapping). */
+      template <int dim>
+      dealii::FEValues<dim>
+      node_values(const elasticity::LinearElasticity<dim> &el)
+      {
+        const auto                   &fe = el.finite_element();
+        const dealii::Quadrature<dim> nodes(
+          fe.base_element(0).get_unit_support_points());
+        return dealii::FEValues<dim>(el.mapping(),
+                                     fe,
+                                     nodes,
+                                     dealii::update_quadrature_points);
+      }
+    } // namespace
+
+
+
+    analytic::ModelSettings
+    StageSettings::model_settings() const
+    {
+      return {geometry, material, scene, analytic};
+    }
+
+
+
+    mesh::MeshSettings
+    StageSettings::mesh_settings() const
+    {
+      return {geometry, scene, mesh};
+    }
+
+
+
+    std::string
+    description(const StageSettings &settings)
+    {
+      std::ostringstream s;
+      s << settings.scene.dimension << "D, " << settings.scene.n_discs
+        << " disc(s), "
+        << (settings.scene.pins == Scene::PinModel::rigid ? "rigid" :
+                                                             "elastic")
+        << " pins";
+      return s.str();
+    }
+
+
+
+    template <int dim>
+    StageScene<dim>::StageScene(const StageSettings     &settings,
+                                const mesh::MeshRequest &request,
+                                const MPI_Comm           comm)
+      : settings(settings)
+      , comm(comm)
+      , geo(settings.geometry)
+      , model(settings.model_settings())
+      , psi_mesh(request.crank_angle)
+      , psi(request.crank_angle)
+      , pcout(std::cout, dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+      , timing(comm,
+               pcout,
+               dealii::TimerOutput::never,
+               dealii::TimerOutput::wall_times)
+      , tria(comm,
+             dealii::Triangulation<dim>::limit_level_difference_at_vertices,
+             false,
+             dealii::parallel::shared::Triangulation<dim>::partition_metis)
+    {
+      AssertThrow(settings.scene.load_introduction !=
+                      Scene::LoadIntroduction::crank_holes ||
+                    settings.geometry.n_crank_holes > 0,
+                  dealii::ExcMessage(
+                    "Scene/Load introduction = crank holes needs "
+                    "Geometry/Number of crank holes > 0 (the disc would have "
+                    "no load surface); use Load introduction = bore."));
+      pin_model = contact::create_pin_model<dim>(
+        {settings.geometry, settings.material, settings.scene});
+      make_grid(request);
+      setup_contact();
+      setup_system();
+      compute_rotation_field();
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::make_grid(const mesh::MeshRequest &request)
+    {
+      dealii::TimerOutput::Scope t(timing, "make grid");
+      mesh::create_stage_mesh(settings.mesh_settings(), request, tria);
+      pcout << "  mesh: " << dim << "D, " << settings.scene.n_discs
+            << " disc(s), " << tria.n_global_active_cells() << " cells"
+            << std::endl;
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::setup_contact()
+    {
+      std::map<dealii::types::material_id, parameters::ElasticMaterial>
+        materials;
+      for (unsigned int d = 0; d < settings.scene.n_discs; ++d)
+        materials[ids::disc(d)] = settings.material.disc;
+      pin_model->add_materials(materials);
+
+      const auto              &c = settings.contact;
+      contact::ContactSettings cs;
+      cs.max_iterations     = c.max_active_set_iterations;
+      cs.search_distance    = c.search_distance;
+      cs.solver_tolerance   = c.solver_tolerance;
+      cs.residual_tolerance = c.residual_tolerance;
+      cs.formulation        = c.formulation;
+      cs.solver             = c.linear_solver;
+      contact = std::make_unique<contact::ContactProblem<dim>>(
+        tria, settings.mesh.degree, materials, cs);
+
+      std::set<dealii::types::material_id> discs;
+      for (unsigned int d = 0; d < settings.scene.n_discs; ++d)
+        discs.insert(ids::disc(d));
+      std::vector<contact::MasterCylinder> pins(settings.geometry.n_pins);
+      for (unsigned int j = 0; j < pins.size(); ++j)
+        pins[j] = {geo.pin_centre(j),
+                   settings.geometry.pin_radius,
+                   ids::pin(j),
+                   ids::pin_surface};
+      contact->set_contact(discs, ids::flank, pins, pin_model->deformable());
+      pin_model->configure(*contact);
+    }
+
+
+
+    template <int dim>
+    double
+    StageScene<dim>::width_scale() const
+    {
+      return dim == 2 ? settings.geometry.tooth_width : 1.;
+    }
+
+
+
+    template <int dim>
+    double
+    StageScene<dim>::model_torque(const double torque) const
+    {
+      return torque * u::Nmm_per_Nm / width_scale();
+    }
+
+
+
+    template <int dim>
+    double
+    StageScene<dim>::stage_torque(const double reaction) const
+    {
+      return reaction * width_scale() * u::Nm_per_Nmm;
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::setup_system()
+    {
+      dealii::TimerOutput::Scope t(timing, "setup system");
+      contact->setup();
+      const auto &el      = contact->elasticity();
+      const auto &fe      = el.finite_element();
+      const auto  load_id = settings.scene.load_introduction ==
+                                Scene::LoadIntroduction::bore ?
+                              ids::bore :
+                              ids::crank_hole;
+      auto        values  = node_values(el);
+      std::vector<dealii::types::global_dof_index> indices(
+        fe.n_dofs_per_cell());
+      std::vector<dealii::types::global_dof_index>      fixed;
+      std::map<dealii::types::global_dof_index, double> load;
+      for (const auto &cell : el.dof_handler().active_cell_iterators())
+        {
+          cell->get_dof_indices(indices);
+          pin_model->held_dofs(cell, indices, values, fixed);
+          if (!ids::is_disc(cell->material_id()))
+            continue;
+          // The disc's load surface turns by beta about the disc's centre.
+          const dealii::Point<2> centre =
+            geo.disc_centre(cell->material_id(), psi);
+          for (const unsigned int f : cell->face_indices())
+            {
+              if (!cell->face(f)->at_boundary() ||
+                  cell->face(f)->boundary_id() != load_id)
+                continue;
+              values.reinit(cell);
+              for (unsigned int i = 0; i < indices.size(); ++i)
+                if (fe.has_support_on_face(i, f))
+                  {
+                    const auto [comp, node] = fe.system_to_component_index(i);
+                    load[indices[i]]        = unit_rotation(
+                      centre, values.quadrature_point(node), comp);
+                  }
+            }
+        }
+      contact->set_fixed_dofs(fixed);
+      contact->set_load(load);
+      unsigned int hanging = 0;
+      for (const auto &s : contact->slave_nodes())
+        hanging += s.hanging;
+      pcout << "  contact: pins " << pin_model->name() << ", " << el.n_dofs()
+            << " DoFs (Q" << fe.degree << "), " << contact->slave_nodes().size()
+            << " candidate nodes (" << hanging << " hanging)"
+            << (contact->tied_nodes().empty() ?
+                  std::string() :
+                  ", " + std::to_string(contact->tied_nodes().size()) +
+                    " seat nodes glued to the pins")
+            << std::endl;
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::compute_rotation_field()
+    {
+      const auto &el     = contact->elasticity();
+      const auto &fe     = el.finite_element();
+      const auto &owned  = el.locally_owned_dofs();
+      auto        values = node_values(el);
+      std::vector<dealii::types::global_dof_index> indices(
+        fe.n_dofs_per_cell());
+      rotation.reinit(owned, comm);
+      for (const auto &cell : el.dof_handler().active_cell_iterators())
+        {
+          if (!cell->is_locally_owned() || !ids::is_disc(cell->material_id()))
+            continue;
+          const dealii::Point<2> c =
+            geo.disc_centre(cell->material_id(), psi_mesh);
+          values.reinit(cell);
+          cell->get_dof_indices(indices);
+          for (unsigned int i = 0; i < indices.size(); ++i)
+            if (owned.is_element(indices[i]))
+              {
+                const auto [comp, node] = fe.system_to_component_index(i);
+                rotation[indices[i]] =
+                  unit_rotation(c, values.quadrature_point(node), comp);
+              }
+        }
+      rotation.compress(dealii::VectorOperation::insert);
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::place_discs(const double psi_now)
+    {
+      dealii::TimerOutput::Scope scope(timing, "place discs");
+      psi                   = psi_now;
+      const auto        &g  = geo;
+      const unsigned int nd = settings.scene.n_discs;
+      const double       p0 = psi_mesh;
+      contact->set_placement(
+        [&g, nd, p0, psi_now](const dealii::types::material_id body,
+                              const dealii::Point<dim>        &x) {
+          if (body >= nd)
+            return x;
+          const dealii::Point<2> moved =
+            g.to_housing(body,
+                         psi_now,
+                         g.to_disc(body, p0, dealii::Point<2>(x[0], x[1])));
+          dealii::Point<dim> y = x;
+          y[0]                 = moved[0];
+          y[1]                 = moved[1];
+          return y;
+        });
+      contact->update_geometry();
+    }
+
+
+
+    template <int dim>
+    contact::ContactState
+    StageScene<dim>::solve_state(const double load)
+    {
+      dealii::TimerOutput::Scope t(timing, "solve (active set)");
+      std::ostringstream         label;
+      label << "crank angle " << psi * u::deg_per_rad << " deg, ";
+      if (settings.rotation_control)
+        {
+          label << "rotation " << load << " rad";
+          return contact->solve_displacement(load, label.str());
+        }
+      label << "torque " << load << " N m";
+      return contact->solve_load(model_torque(load), label.str());
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::refine_at_contacts()
+    {
+      dealii::TimerOutput::Scope t(timing, "refine at contacts");
+      // Cells of any body next to an active node, up to the level that the
+      // a-priori refinements plus the adaptive cycles allow.
+      const auto        &m   = settings.mesh;
+      const unsigned int cap =
+        m.global_refinements + m.contact_refinements + m.adaptive_cycles;
+      std::vector<dealii::Point<dim>> points;
+      for (const unsigned int i : contact->active_set())
+        points.push_back(contact->slave_nodes()[i].position);
+      unsigned int flagged = 0;
+      for (const auto &cell : tria.active_cell_iterators())
+        {
+          if (static_cast<unsigned int>(cell->level()) >= cap)
+            continue;
+          const auto   c = cell->center();
+          const double r = cell->diameter();
+          for (const auto &p : points)
+            if (p.distance(c) < 2 * r)
+              {
+                cell->set_refine_flag();
+                ++flagged;
+                break;
+              }
+        }
+      if (flagged == 0)
+        return;
+      const auto snapshot = contact->active_set_snapshot();
+      tria.execute_coarsening_and_refinement();
+      setup_system();
+      compute_rotation_field();
+      contact->transfer_active_set(snapshot);
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::initialise_active_set(const double load)
+    {
+      // The nodes that the analytical model's rotation pushes into the pins
+      // (an empty set leaves the discs free).
+      const double beta = settings.rotation_control ?
+                            load :
+                            model.solve(psi, load, 0.).rotation;
+      contact->initialise_active_set([&](const contact::SlaveNode<dim> &s) {
+        const dealii::Point<2> c = geo.disc_centre(s.body, psi);
+        const double           n_dot_u =
+          beta * (s.normal[1] * (s.position[0] - c[0]) -
+                  s.normal[0] * (s.position[1] - c[1]));
+        return s.gap0 + n_dot_u < 0;
+      });
+    }
+
+
+
+    template <int dim>
+    results::StageState
+    StageScene<dim>::solve(const double load)
+    {
+      const auto start = std::chrono::steady_clock::now();
+      if (!warm)
+        {
+          initialise_active_set(load);
+          warm = true;
+        }
+      contact::ContactState result     = solve_state(load);
+      unsigned int          iterations = result.iterations;
+      unsigned long         linear     = result.linear_iterations;
+      for (unsigned int cycle = 0; cycle < settings.mesh.adaptive_cycles;
+           ++cycle)
+        {
+          const auto n = contact->elasticity().n_dofs();
+          refine_at_contacts();
+          if (contact->elasticity().n_dofs() == n)
+            break;
+          result = solve_state(load);
+          iterations += result.iterations;
+          linear += result.linear_iterations;
+        }
+      results::StageState s = state(result, load);
+      s.iterations          = iterations;
+      s.linear_iterations   = linear;
+      s.peak_memory_MB      = postprocess::peak_memory_MB(comm);
+      s.wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+      return s;
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::sum_pin_forces(std::vector<results::PinState> &pins) const
+    {
+      const unsigned int zp        = settings.geometry.n_pins;
+      const double       scale     = width_scale();
+      const auto        &slaves    = contact->slave_nodes();
+      const auto        &reactions = contact->slave_reactions();
+      std::vector<double> moment(pins.size(), 0.);
+      for (const unsigned int i : contact->active_set())
+        {
+          const auto            &s = slaves[i];
+          const unsigned int     k = s.body * zp + s.cylinder;
+          const dealii::Point<2> c = geo.disc_centre(s.body, psi);
+          // Reactions are in the mesh axes; the disc has turned by delta
+          // since the mesh's crank angle (transient runs): housing frame.
+          const double delta = geo.disc_rotation(s.body, psi) -
+                               geo.disc_rotation(s.body, psi_mesh);
+          const double rx = reactions[i][0] * scale,
+                       ry = reactions[i][1] * scale;
+          const double gx = std::cos(delta) * rx - std::sin(delta) * ry,
+                       gy = std::sin(delta) * rx + std::cos(delta) * ry;
+          pins[k].fx += gx;
+          pins[k].fy += gy;
+          moment[k] +=
+            (s.position[0] - c[0]) * gy - (s.position[1] - c[1]) * gx;
+        }
+      for (unsigned int k = 0; k < pins.size(); ++k)
+        {
+          auto &p = pins[k];
+          p.fn    = std::hypot(p.fx, p.fy);
+          // The pin's force on the disc resists a positive torque:
+          // arm = -(r x F)/|F|.
+          if (p.fn > 0)
+            p.arm = -moment[k] / p.fn;
+        }
+    }
+
+
+
+    template <int dim>
+    double
+    StageScene<dim>::contact_halfwidth(
+      const unsigned int      d,
+      const unsigned int      j,
+      const dealii::Point<2> &contact_point) const
+    {
+      // Half the arc between the outermost active nodes of this pair, plus
+      // half a node spacing on each side.
+      const auto            &slaves = contact->slave_nodes();
+      const dealii::Point<2> c      = geo.pin_centre(j);
+      const double           a0     = std::atan2(contact_point[1] - c[1],
+                                     contact_point[0] - c[0]);
+      const auto             angle  = [&](const contact::SlaveNode<dim> &s) {
+        return std::remainder(std::atan2(s.position[1] - c[1],
+                                         s.position[0] - c[0]) -
+                                a0,
+                              2. * u::pi);
+      };
+      double lo = 1e300, hi = -1e300, spacing = 1e300;
+      for (const unsigned int i : contact->active_set())
+        if (slaves[i].body == d && slaves[i].cylinder == j)
+          {
+            lo = std::min(lo, angle(slaves[i]));
+            hi = std::max(hi, angle(slaves[i]));
+          }
+      if (hi < lo)
+        return 0.;
+      for (const auto &s : slaves)
+        if (s.body == d && s.cylinder == j)
+          {
+            const double a = angle(s);
+            if (a > hi + 1e-12 || a < lo - 1e-12)
+              spacing =
+                std::min(spacing, std::min(std::abs(a - hi), std::abs(a - lo)));
+          }
+      if (spacing > 1e200)
+        spacing = 0;
+      return settings.geometry.pin_radius * (0.5 * (hi - lo) + 0.5 * spacing);
+    }
+
+
+
+    template <int dim>
+    results::StageState
+    StageScene<dim>::state(const contact::ContactState &result,
+                           const double                 load) const
+    {
+      dealii::TimerOutput::Scope t(timing, "pin forces");
+      const unsigned int         zp = settings.geometry.n_pins;
+      const unsigned int         nd = settings.scene.n_discs;
+      results::StageState        s;
+      s.crank    = psi;
+      s.torque   = settings.rotation_control ? stage_torque(result.reaction) :
+                                               load;
+      s.rotation = result.beta;
+      s.k_tangent = result.tangent * width_scale() * u::Nm_per_Nmm;
+      s.dofs      = contact->elasticity().n_dofs();
+      s.iterations        = result.iterations;
+      s.linear_iterations = result.linear_iterations;
+      s.pins.resize(nd * zp);
+      for (unsigned int d = 0; d < nd; ++d)
+        for (unsigned int j = 0; j < zp; ++j)
+          {
+            s.pins[d * zp + j].disc = d;
+            s.pins[d * zp + j].pin  = j;
+          }
+      sum_pin_forces(s.pins);
+
+      // Rigid take-up (lost motion) of the exact geometry, as in the
+      // analytical model: the rotation that closes the first clearance of
+      // any disc.
+      double takeup = std::numeric_limits<double>::max();
+      for (unsigned int d = 0; d < nd; ++d)
+        for (const auto &pc : geo.pin_contacts(d, psi))
+          {
+            if ((s.torque >= 0 ? pc.arm : -pc.arm) > 1e-9)
+              takeup =
+                std::min(takeup, std::max(pc.clearance, 0.) / std::abs(pc.arm));
+            auto &p = s.pins[d * zp + pc.pin];
+            if (p.fn == 0)
+              p.arm = pc.arm;
+            p.clearance     = pc.clearance;
+            p.phase         = pc.phase;
+            p.contact_point = pc.contact_point;
+            p.approach      = s.rotation * pc.arm - pc.clearance;
+            p.contact_halfwidth = contact_halfwidth(d, pc.pin, pc.contact_point);
+            p.hertz_halfwidth   = analytic::stage_hertz_half_width(
+              p.fn,
+              pc.curvature_radius,
+              settings.geometry,
+              settings.material,
+              settings.scene);
+            s.reaction_torque += p.fn * p.arm * u::Nm_per_Nmm;
+          }
+      s.takeup = (s.torque >= 0 ? 1. : -1.) * takeup;
+      return s;
+    }
+
+
+
+    template <int dim>
+    ActiveSetSnapshot<dim>
+    StageScene<dim>::active_set_snapshot() const
+    {
+      return contact->active_set_snapshot();
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::warm_start(const ActiveSetSnapshot<dim> &snapshot)
+    {
+      contact->transfer_active_set(snapshot);
+      warm = !snapshot.empty();
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::output_results(const unsigned int           step,
+                                    postprocess::SolutionRecord &record)
+    {
+      dealii::TimerOutput::Scope t(timing, "output results");
+      const std::string          name = postprocess::SolutionRecord::name(step);
+      contact->write_vtu(settings.output_directory, name);
+      record.add(step, name + ".pvtu");
+    }
+
+
+
+    template class StageScene<2>;
+    template class StageScene<3>;
+  } // namespace stage
+} // namespace cycloid
