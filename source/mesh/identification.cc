@@ -77,13 +77,14 @@ namespace cycloid
                 }
               return;
             }
-          const bool axial = is_axial(pts);
-          if (ids::is_disc(m))
-            disc_face(face, pts, axial, m);
+          if (is_axial(pts))
+            face->set_boundary_id(ids::axial_faces(m));
+          else if (ids::is_disc(m))
+            disc_face(face, pts, m);
           else if (ids::is_pin(m))
-            pin_face(face, pts, axial, ids::pin_index(m));
+            pin_face(face, pts, ids::pin_index(m));
           else if (m == ids::housing)
-            housing_face(face, pts, axial);
+            housing_face(face, pts);
         }
 
       private:
@@ -99,18 +100,12 @@ namespace cycloid
           return axial;
         }
 
-        /** Disc @p d: axial face, bore, crank hole, or else flank. */
+        /** Disc @p d (not an axial face): bore, crank hole, or else flank. */
         void
         disc_face(const Face        &face,
                   const Points      &pts,
-                  const bool         axial,
                   const unsigned int d) const
         {
-          if (axial)
-            {
-              face->set_boundary_id(ids::disc_axial);
-              return;
-            }
           if (all_on_circle(
                 pts, geometry.disc_centre(d, psi), g.bore_radius, tol))
             {
@@ -132,18 +127,12 @@ namespace cycloid
           face->set_all_manifold_ids(ids::profile_manifold(d));
         }
 
-        /** Pin @p j: end face, or else its cylinder (checked). */
+        /** Pin @p j (not an end face): its cylinder, checked. */
         void
         pin_face(const Face        &face,
                  const Points      &pts,
-                 const bool         axial,
                  const unsigned int j) const
         {
-          if (axial)
-            {
-              face->set_boundary_id(ids::pin_axial);
-              return;
-            }
           AssertThrow(
             all_on_circle(pts, geometry.pin_centre(j), g.pin_radius, tol),
             dealii::ExcMessage("mesh: a boundary face of pin " +
@@ -153,18 +142,11 @@ namespace cycloid
           face->set_all_manifold_ids(ids::pin_manifold(j));
         }
 
-        /** Housing: axial face, outer cylinder, a pin's seat, or else the
-         * inner cylinder between the grooves. */
+        /** Housing (not an axial face): outer cylinder, a pin's seat, or
+         * else the inner cylinder between the grooves. */
         void
-        housing_face(const Face   &face,
-                     const Points &pts,
-                     const bool    axial) const
+        housing_face(const Face &face, const Points &pts) const
         {
-          if (axial)
-            {
-              face->set_boundary_id(ids::housing_axial);
-              return;
-            }
           if (all_on_circle(pts,
                             dealii::Point<2>(),
                             geometry.pin_circle_radius() + g.housing_thickness,

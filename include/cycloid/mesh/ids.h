@@ -82,6 +82,14 @@ namespace cycloid
       constexpr dealii::types::boundary_id pin_axial     = 9;
       constexpr dealii::types::boundary_id housing_axial = 10;
 
+      /** Boundary id of the axial (end) faces of body @p m, a disc, a pin
+       * or the housing (3D). */
+      constexpr dealii::types::boundary_id
+      axial_faces(const dealii::types::material_id m)
+      {
+        return is_disc(m) ? disc_axial : is_pin(m) ? pin_axial : housing_axial;
+      }
+
       /** Name of a boundary id, for output. */
       std::string
       boundary_name(const dealii::types::boundary_id b);
