@@ -6,8 +6,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <cycloid/app/run.h>
 #include <cycloid/app/all_parameters.h>
+#include <cycloid/app/run.h>
 
 #include <iostream>
 #include <string>
@@ -88,8 +88,7 @@ main(int argc, char *argv[])
           return 2;
         }
 
-      const auto parameters =
-        cycloid::app::AllParameters::read(filename);
+      const auto parameters = cycloid::app::AllParameters::read(filename);
       cycloid::app::run(parameters, MPI_COMM_WORLD);
     }
   catch (dealii::ExceptionBase &exc)

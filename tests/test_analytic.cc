@@ -36,9 +36,9 @@ namespace
 
 TEST(PairModels, HertzHalfWidthOfTheDesignCase)
 {
-  // design.md: R1 = 10, R2 = 13 mm, E1 = 30000, nu1 = 0.25, E2 = 29120,
-  // nu2 = 0.3, F = 3200 N/mm -> half-width 1.20 mm (two convex cylinders:
-  // the "profile" has curvature radius -13).
+  // doc/design-basis.md §2.3: R1 = 10, R2 = 13 mm, E1 = 30000, nu1 = 0.25, E2 =
+  // 29120, nu2 = 0.3, F = 3200 N/mm -> half-width 1.20 mm (two convex
+  // cylinders: the "profile" has curvature radius -13).
   const LineContactPairStiffness m(1.0,
                                    29120. / (1. - 0.09),
                                    30000. / (1. - 0.0625));
@@ -229,8 +229,8 @@ TEST(LoadDistribution, EngagementAndStiffnessGrowWithTorque)
     {
       const StageModel model(
         seed_case(model_name, -0.01, 0.01).model_settings());
-      unsigned int     pins     = 0;
-      double           k_secant = 0, k_tangent = 0, beta = 0;
+      unsigned int pins     = 0;
+      double       k_secant = 0, k_tangent = 0, beta = 0;
       for (const double torque : {3., 30., 300., 1000., 3000., 10000.})
         {
           const LoadState s = model.solve(0.02, torque, beta);
@@ -254,9 +254,9 @@ TEST(LoadDistribution, WarmStartGivesTheSameStateInFewerIterations)
 {
   const StageModel model(
     seed_case("line-contact", -0.01, 0.01).model_settings());
-  const LoadState  cold = model.solve(0.03, 1000., 0.);
-  const LoadState  ref  = model.solve(0.0, 1000., 0.);
-  const LoadState  warm = model.solve(0.03, 1000., ref.rotation);
+  const LoadState cold = model.solve(0.03, 1000., 0.);
+  const LoadState ref  = model.solve(0.0, 1000., 0.);
+  const LoadState warm = model.solve(0.03, 1000., ref.rotation);
   EXPECT_NEAR(warm.rotation, cold.rotation, 1e-14);
   EXPECT_LT(warm.iterations, cold.iterations);
 }
@@ -280,9 +280,9 @@ TEST(LoadDistribution, CrankHolesBreakExactPeriodicity)
   // effect on K is small but not zero.
   const StageModel model(
     seed_case("line-contact", -0.01, 0.01).model_settings());
-  const double     T = model.geometry().mesh_period();
-  const double     a = model.solve(0.05, 800., 0.).k_tangent;
-  const double     b = model.solve(0.05 + T, 800., 0.).k_tangent;
+  const double T = model.geometry().mesh_period();
+  const double a = model.solve(0.05, 800., 0.).k_tangent;
+  const double b = model.solve(0.05 + T, 800., 0.).k_tangent;
   EXPECT_GT(std::abs(a - b), 1e-6 * a);
   EXPECT_LT(std::abs(a - b), 1e-2 * a);
 }

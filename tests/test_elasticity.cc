@@ -1,6 +1,6 @@
 // Linear elasticity against Lame's closed form: a thick cylinder (inner
-// radius 0.2, outer 1.0, E = 1e9, nu = 0.2; design.md's ring dimensions)
-// under internal pressure in plane strain, on a quarter with symmetry
+// radius 0.2, outer 1.0, E = 1e9, nu = 0.2; the ring of doc/design-basis.md
+// §2.3) under internal pressure in plane strain, on a quarter with symmetry
 // conditions. Checks the displacement error and its convergence rate for Q1
 // and Q2, the CG+AMG solution against the direct solver, and (run on 2 MPI
 // ranks too) that the answer does not depend on the partition.

@@ -1,8 +1,8 @@
 // Tests of the cycloid geometry: conjugacy of the standard profile (zero
 // gap found by a real closest-point search), periodicity in the crank angle,
-// the clearance ranges of the two modification examples of design.md, the
-// law of gearing (normals through the pitch point) and curvature closed
-// forms.
+// the clearance ranges of the two modification examples of doc/design-basis.md
+// §2.1, the law of gearing (normals through the pitch point) and curvature
+// closed forms.
 
 #include <deal.II/base/numbers.h>
 
@@ -65,7 +65,7 @@ namespace
 TEST(Geometry, SeedCaseDerivedQuantities)
 {
   const CycloidGeometry g{GeometryParameters()};
-  // rp = e zp / K1 = 2.2 * 40 / 0.675 (design.md: 130.370 mm).
+  // rp = e zp / K1 = 2.2 * 40 / 0.675 (doc/design-basis.md: 130.370 mm).
   EXPECT_NEAR(g.pin_circle_radius(), 130.370370370, 1e-8);
   EXPECT_NEAR(g.root_radius(), 130.370370370 - 2.2 - 3., 1e-8);
   EXPECT_NEAR(g.profile(0.).point.norm(), g.root_radius(), 1e-10);
@@ -171,8 +171,8 @@ TEST(Geometry, ClearancesArePeriodicInTheCrankAngle)
 
 TEST(Geometry, ClearanceRangesOfTheDesignExamples)
 {
-  // design.md: Delta rp = Delta rrp = +0.01 mm gives 0 to 2.6 um;
-  // Delta rp = -0.01, Delta rrp = +0.01 gives 17.4 to 20 um.
+  // doc/design-basis.md §2.1: Delta rp = Delta rrp = +0.01 mm gives 0 to 2.6
+  // um; Delta rp = -0.01, Delta rrp = +0.01 gives 17.4 to 20 um.
   const struct
   {
     double d_rp, d_rrp, lo_um, hi_um;

@@ -8,9 +8,9 @@
 #include <deal.II/distributed/shared_tria.h>
 #include <deal.II/grid/tria.h>
 
+#include <cycloid/app/all_parameters.h>
 #include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/mesh/stage_mesh.h>
-#include <cycloid/app/all_parameters.h>
 
 #include <gtest/gtest.h>
 
@@ -88,8 +88,8 @@ namespace
 
 TEST(Mesh, TwoDimensionalSceneIsIdentifiedCompletely)
 {
-  app::AllParameters p = coarse_scene(2, 1);
-  dealii::Triangulation<2>  tria;
+  app::AllParameters       p = coarse_scene(2, 1);
+  dealii::Triangulation<2> tria;
   mesh::create_stage_mesh(p.mesh_settings(), placed_at(0.1), tria);
 
   std::set<dealii::types::material_id> bodies;
@@ -157,7 +157,7 @@ TEST(Mesh, RefinedVerticesLieOnTheExactCurves)
   // (modified) cycloid profile and every pin-surface vertex on its pin's
   // cylinder, to 1e-6 mm (design: the facets of a coarse mesh must not
   // decide the answer).
-  app::AllParameters p         = coarse_scene(2, 1);
+  app::AllParameters p                = coarse_scene(2, 1);
   p.geometry.delta_pin_circle_radius  = -0.01;
   p.geometry.delta_pin_radius         = 0.01;
   const double                    psi = 0.07;
@@ -206,7 +206,7 @@ TEST(Mesh, RefinedVerticesLieOnTheExactCurves)
 TEST(Mesh, ThreeDimensionalTwoDiscSceneWithHousing)
 {
   app::AllParameters p = coarse_scene(3, 2);
-  p.scene.pin_support = parameters::SceneParameters::PinSupport::housing;
+  p.scene.pin_support  = parameters::SceneParameters::PinSupport::housing;
   dealii::Triangulation<3> tria;
   mesh::create_stage_mesh(p.mesh_settings(), placed_at(0.2), tria);
 
@@ -244,7 +244,7 @@ TEST(Mesh, SharedTriangulationIsPartitionedWithMetis)
 {
   // On one rank every cell is owned by rank 0; the partitioner is METIS
   // (the two-rank case is checked by the mesh run test on 2 ranks).
-  app::AllParameters                  p = coarse_scene(2, 1);
+  app::AllParameters                         p = coarse_scene(2, 1);
   dealii::parallel::shared::Triangulation<2> tria(
     MPI_COMM_WORLD,
     dealii::Triangulation<2>::limit_level_difference_at_vertices,

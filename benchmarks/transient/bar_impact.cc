@@ -1,4 +1,4 @@
-// Elastic bar hitting a rigid wall (design.md, "Dynamics"): a bar of length
+// Elastic bar hitting a rigid wall (doc/design-basis.md §2.3): a bar of length
 // L moving at v0 touches the wall at t = 0; 1D theory keeps it in contact
 // for 2L/c with the force rho c A v0 and sends it back at -v0
 // (c = sqrt(E/rho)). Plane strain with nu = 0 is exactly 1D here. The wall

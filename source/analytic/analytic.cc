@@ -52,14 +52,14 @@ namespace cycloid
                            const parameters::MaterialParameters &material,
                            const parameters::SceneParameters    &scene)
     {
-      const bool rigid = scene.pins == parameters::SceneParameters::PinModel::rigid;
+      const bool rigid =
+        scene.pins == parameters::SceneParameters::PinModel::rigid;
       return hertz_half_width(force,
                               geometry.tooth_width,
                               geometry.pin_radius,
                               rho,
                               material.disc.plane_strain_modulus(),
-                              rigid ? 0. :
-                                      material.pin.plane_strain_modulus());
+                              rigid ? 0. : material.pin.plane_strain_modulus());
     }
 
 

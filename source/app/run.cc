@@ -61,8 +61,7 @@ namespace cycloid
         using Mode = parameters::RunParameters::Mode;
         switch (prm.run.mode)
           {
-            case Mode::mesh:
-              {
+              case Mode::mesh: {
                 // The directory first: the mesher may write stage.msh.
                 make_output_directory(prm.run.output_directory, comm);
                 runs::MeshRun<dim> run(

@@ -80,7 +80,7 @@ namespace cycloid
                                  solver == "cg-amg-translations" ?
                                    elasticity::LinearSolver::cg_amg_translations_only :
                                    elasticity::LinearSolver::cg_amg;
-      solver_tolerance = prm.get_double("Relative tolerance");
+      solver_tolerance         = prm.get_double("Relative tolerance");
       prm.leave_subsection();
     }
   } // namespace contact

@@ -97,7 +97,7 @@ namespace cycloid
           if (!ids::is_pin(m))
             return;
           const double core = prm.scene.pin_core_radius * (1. + 1e-9);
-          const auto   c    = geo.pin_centre(m - ids::pin(0));
+          const auto   c    = geo.pin_centre(ids::pin_index(m));
           bool         near = false;
           for (const unsigned int v : cell->vertex_indices())
             near |= std::hypot(cell->vertex(v)[0] - c[0],
@@ -116,8 +116,8 @@ namespace cycloid
         }
 
       private:
-        const PinModelSettings prm;
-        const geometry::CycloidGeometry  geo;
+        const PinModelSettings          prm;
+        const geometry::CycloidGeometry geo;
       };
 
 

@@ -86,8 +86,7 @@ namespace cycloid
                     options.resume_sizes.size() == names.size(),
                   dealii::ExcInternalError());
       std::vector<std::ofstream *> streams{&stiffness, &pin_forces};
-      std::vector<std::string>     headers{stiffness_header(),
-                                       pin_forces_header()};
+      std::vector<std::string> headers{stiffness_header(), pin_forces_header()};
       if (options.energy)
         {
           streams.push_back(&energy);
@@ -141,7 +140,7 @@ namespace cycloid
       for (const auto &name : files())
         {
           std::error_code ec;
-          const auto n =
+          const auto      n =
             std::filesystem::file_size(options.directory + "/" + name, ec);
           sizes.push_back(ec ? 0 : n);
         }
@@ -169,9 +168,8 @@ namespace cycloid
       for (const results::PinState &p : s.pins)
         pin_forces << s.step << ',' << crank_deg << ',' << p.disc << ','
                    << p.pin << ',' << p.fx + 0. << ',' << p.fy + 0. << ','
-                   << p.fn << ',' << p.arm << ','
-                   << p.clearance * u::um_per_mm << ','
-                   << p.phase * u::deg_per_rad << ','
+                   << p.fn << ',' << p.arm << ',' << p.clearance * u::um_per_mm
+                   << ',' << p.phase * u::deg_per_rad << ','
                    << p.approach * u::um_per_mm << ',' << p.pair_stiffness
                    << ',' << p.contact_point[0] << ',' << p.contact_point[1]
                    << ',' << p.contact_halfwidth * u::um_per_mm << ','
@@ -179,9 +177,9 @@ namespace cycloid
       stiffness.flush();
       pin_forces.flush();
 
-      auto it = std::find_if(series.begin(), series.end(), [&](const Series &x) {
-        return x.load == load;
-      });
+      auto it = std::find_if(series.begin(),
+                             series.end(),
+                             [&](const Series &x) { return x.load == load; });
       if (it == series.end())
         {
           series.push_back(Series{load, {}, {}, {}});
@@ -201,11 +199,11 @@ namespace cycloid
         return;
       energy << e.step << ',' << e.time_s << ',' << e.kinetic << ','
              << e.elastic << ',' << e.external << ',' << s.iterations << ','
-             << s.crank * u::deg_per_rad << ',' << s.torque << ','
-             << s.rotation << ',' << e.bore_work << ',' << e.contact_work
-             << ',' << e.dissipated << ',' << e.balance << ','
-             << e.relative_balance << ',' << e.max_penetration_um << ','
-             << s.wall_s << ',' << e.angular_momentum << '\n';
+             << s.crank * u::deg_per_rad << ',' << s.torque << ',' << s.rotation
+             << ',' << e.bore_work << ',' << e.contact_work << ','
+             << e.dissipated << ',' << e.balance << ',' << e.relative_balance
+             << ',' << e.max_penetration_um << ',' << s.wall_s << ','
+             << e.angular_momentum << '\n';
       energy.flush();
     }
 
@@ -253,19 +251,20 @@ namespace cycloid
               const Statistics kt(x.k_tangent), ks(x.k_secant);
               // The first and last phase are one mesh period apart: their
               // ratio shows how far the discretisation is from periodic.
-              const double closure = x.k_tangent.back() / x.k_tangent.front() - 1;
+              const double closure =
+                x.k_tangent.back() / x.k_tangent.front() - 1;
               out << x.load << ',' << x.crank.size() << ',' << kt.mean << ','
                   << kt.min << ',' << kt.max << ',' << kt.fluctuation << ','
-                  << ks.mean << ',' << ks.fluctuation << ',' << closure
-                  << '\n';
-              std::cout << "  " << (options.rotation_control ? "rotation " : "torque ")
+                  << ks.mean << ',' << ks.fluctuation << ',' << closure << '\n';
+              std::cout << "  "
+                        << (options.rotation_control ? "rotation " : "torque ")
                         << x.load
                         << (options.rotation_control ? " rad" : " N m")
                         << ": K_tangent over the period mean " << kt.mean
                         << ", min " << kt.min << ", max " << kt.max
                         << " N m/rad; fluctuation (max-min)/mean "
-                        << kt.fluctuation << "; first vs last phase "
-                        << closure << std::endl;
+                        << kt.fluctuation << "; first vs last phase " << closure
+                        << std::endl;
             }
         }
       std::cout << "  results in " << options.directory << "/: " << written

@@ -103,8 +103,8 @@ namespace cycloid
     {
       if (dealii::Utilities::MPI::this_mpi_process(comm) != 0)
         return;
-      const unsigned int n  = time.size();
-      const unsigned int np = attributes.n_discs * attributes.n_pins;
+      const unsigned int n   = time.size();
+      const unsigned int np  = attributes.n_discs * attributes.n_pins;
       const std::string  tmp = dir + "/transient.h5.tmp";
       {
         dealii::HDF5::File file(tmp,

@@ -47,7 +47,7 @@ namespace cycloid
       // alike); only rank 0 computes and writes.
       if (dealii::Utilities::MPI::this_mpi_process(comm) != 0)
         return;
-      const auto               &geo    = model.geometry();
+      const auto               &geo = model.geometry();
       const std::vector<double> angles =
         settings.loading.crank_angles(geo.mesh_period());
       const std::vector<double> &torques  = settings.loading.torques;
@@ -56,9 +56,9 @@ namespace cycloid
                 << model.pair_model().name()
                 << "', zp = " << settings.model.geometry.n_pins
                 << ", rp = " << geo.pin_circle_radius() << " mm, "
-                << settings.model.scene.n_discs << " disc(s), "
-                << angles.size() << " crank angle(s) x " << torques.size()
-                << " torque(s)" << std::endl;
+                << settings.model.scene.n_discs << " disc(s), " << angles.size()
+                << " crank angle(s) x " << torques.size() << " torque(s)"
+                << std::endl;
 
       unsigned int step    = 0;
       double       beta    = 0;
@@ -67,8 +67,8 @@ namespace cycloid
         {
           // The unloaded geometry of a crank angle serves all its torques;
           // its cost goes to the first torque's wall time.
-          auto       start = std::chrono::steady_clock::now();
-          const auto pins  = model.unloaded_pins(psi);
+          auto       start      = std::chrono::steady_clock::now();
+          const auto pins       = model.unloaded_pins(psi);
           double     geometry_s = seconds_since(start);
           for (unsigned int t = 0; t < torques.size(); ++t, ++step)
             {
@@ -82,15 +82,14 @@ namespace cycloid
                 {
                   std::ostringstream info;
                   e.print_info(info);
-                  AssertThrow(false,
-                              dealii::ExcMessage(
-                                "state " + std::to_string(step) +
-                                " (crank angle " +
-                                std::to_string(psi * u::deg_per_rad) +
-                                " deg, torque " + std::to_string(torques[t]) +
-                                " N m): " + info.str()));
+                  AssertThrow(
+                    false,
+                    dealii::ExcMessage(
+                      "state " + std::to_string(step) + " (crank angle " +
+                      std::to_string(psi * u::deg_per_rad) + " deg, torque " +
+                      std::to_string(torques[t]) + " N m): " + info.str()));
                 }
-              beta = load.rotation;
+              beta                      = load.rotation;
               results::StageState state = model.stage_state(load, psi);
               state.step                = step;
               state.wall_s              = seconds_since(start) + geometry_s;
@@ -108,8 +107,8 @@ namespace cycloid
             }
         }
       report.finish();
-      std::cout << "  compute time " << total_s * 1e3 << " ms for "
-                << n_states << " states" << std::endl;
+      std::cout << "  compute time " << total_s * 1e3 << " ms for " << n_states
+                << " states" << std::endl;
     }
   } // namespace runs
 } // namespace cycloid

@@ -6,9 +6,9 @@
 #include <deal.II/distributed/shared_tria.h>
 
 #include <cycloid/mesh/stage_mesh.h>
-#include <cycloid/runs/mesh_run.h>
 #include <cycloid/postprocess/mesh_output.h>
 #include <cycloid/results/stage_state.h>
+#include <cycloid/runs/mesh_run.h>
 
 #include <chrono>
 #include <fstream>
@@ -94,14 +94,14 @@ namespace cycloid
           for (const auto &s : stats)
             {
               (mesh::ids::is_disc(s.material_id) ? disc_cells :
-               mesh::ids::is_pin(s.material_id) ? pin_cells :
-                                                  housing_cells) += s.n_cells;
+               mesh::ids::is_pin(s.material_id)  ? pin_cells :
+                                                   housing_cells) += s.n_cells;
               max_aspect = std::max(max_aspect, s.max_aspect_ratio);
             }
           std::cout << "cycloid-contact: " << dim << "D mesh of "
                     << scene.n_discs << " disc(s), "
-                    << settings.mesh.geometry.n_pins
-                    << " pins" << (housing_cells > 0 ? ", housing" : "")
+                    << settings.mesh.geometry.n_pins << " pins"
+                    << (housing_cells > 0 ? ", housing" : "")
                     << " at crank angle "
                     << settings.request.crank_angle *
                          results::units::deg_per_rad

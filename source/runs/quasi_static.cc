@@ -29,6 +29,17 @@ namespace cycloid
 
 
 
+    postprocess::Report::Options
+    report_options(const FeRunSettings &settings)
+    {
+      postprocess::Report::Options options;
+      options.directory        = settings.stage.output_directory;
+      options.rotation_control = settings.loading.rotation_control;
+      return options;
+    }
+
+
+
     template <int dim>
     const stage::StageSettings &
     QuasiStaticRun<dim>::announce(const FeRunSettings &settings,
@@ -63,11 +74,8 @@ namespace cycloid
     void
     QuasiStaticRun<dim>::run()
     {
-      const auto         &stage = settings.stage;
-      postprocess::Report report({stage.output_directory,
-                                  settings.loading.rotation_control},
-                                 comm);
-      postprocess::SolutionRecord record(stage.output_directory, comm);
+      postprocess::Report         report(report_options(settings), comm);
+      postprocess::SolutionRecord record(settings.stage.output_directory, comm);
       const std::vector<double>   loads = settings.loading.load_values();
       for (unsigned int step = 0; step < loads.size(); ++step)
         {
@@ -94,16 +102,15 @@ namespace cycloid
       , angles(settings.loading.crank_angles(
           geometry::CycloidGeometry(settings.stage.geometry).mesh_period()))
     {
-      dealii::ConditionalOStream(std::cout,
-                                 dealii::Utilities::MPI::this_mpi_process(
-                                   comm) == 0)
+      dealii::ConditionalOStream(
+        std::cout, dealii::Utilities::MPI::this_mpi_process(comm) == 0)
         << "cycloid-contact: phase sweep, FE contact, "
         << stage::description(settings.stage) << ", " << angles.size()
         << " crank angles over "
         << geometry::CycloidGeometry(settings.stage.geometry).mesh_period() *
              u::deg_per_rad
-        << " deg x "
-        << settings.loading.load_values().size() << " load(s)" << std::endl;
+        << " deg x " << settings.loading.load_values().size() << " load(s)"
+        << std::endl;
       first = std::make_unique<stage::StageScene<dim>>(
         settings.stage, mesh_request(settings, angles.front()), comm);
     }
@@ -114,11 +121,8 @@ namespace cycloid
     void
     PhaseSweepRun<dim>::run()
     {
-      const auto         &stage = settings.stage;
-      postprocess::Report report({stage.output_directory,
-                                  settings.loading.rotation_control},
-                                 comm);
-      postprocess::SolutionRecord record(stage.output_directory, comm);
+      postprocess::Report         report(report_options(settings), comm);
+      postprocess::SolutionRecord record(settings.stage.output_directory, comm);
       const std::vector<double>   loads    = settings.loading.load_values();
       const unsigned int          n_states = angles.size() * loads.size();
       // Per load: the last phase's active set (the warm start of the next).
@@ -127,9 +131,10 @@ namespace cycloid
       unsigned int step  = 0;
       for (unsigned int k = 0; k < angles.size(); ++k)
         {
-          auto scene = k == 0 ? std::move(first) :
-                                std::make_unique<stage::StageScene<dim>>(
-                                  stage, mesh_request(settings, angles[k]), comm);
+          auto scene =
+            k == 0 ? std::move(first) :
+                     std::make_unique<stage::StageScene<dim>>(
+                       settings.stage, mesh_request(settings, angles[k]), comm);
           for (unsigned int t = 0; t < loads.size(); ++t, ++step)
             {
               scene->warm_start(snapshots[t]);

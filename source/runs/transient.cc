@@ -71,14 +71,15 @@ namespace cycloid
       , time(settings.transient,
              settings.run.loading.crank_angle(),
              settings.run.loading.load_values().front())
-      , scene(settings.run.stage,
-              [&] {
-                auto request = mesh_request(settings.run,
-                                            settings.run.loading.crank_angle());
-                request.sweep = time.crank_sweep();
-                return request;
-              }(),
-              comm)
+      , scene(
+          settings.run.stage,
+          [&] {
+            auto request =
+              mesh_request(settings.run, settings.run.loading.crank_angle());
+            request.sweep = time.crank_sweep();
+            return request;
+          }(),
+          comm)
       , energy(settings.transient.max_energy_error,
                settings.transient.scheme_name,
                time.crank_turns())
@@ -100,8 +101,8 @@ namespace cycloid
     double
     TransientRun<dim>::angular_momentum() const
     {
-      const auto Mv = scene.contact_problem().elasticity().mass_times(
-        dynamics->velocity());
+      const auto Mv =
+        scene.contact_problem().elasticity().mass_times(dynamics->velocity());
       const auto &g = scene.rotation_field();
       double      L = 0;
       for (const auto i : g.locally_owned_elements())
@@ -179,8 +180,8 @@ namespace cycloid
       const double psi        = time.crank_angle(t);
       if (time.crank_turns())
         scene.place_discs(psi);
-      const double        value = time.load(t);
-      const bool          rotation = settings.run.loading.rotation_control;
+      const double         value    = time.load(t);
+      const bool           rotation = settings.run.loading.rotation_control;
       dynamics::StepReport report;
       {
         dealii::TimerOutput::Scope scope(scene.timer(), "time step");
@@ -220,9 +221,9 @@ namespace cycloid
             << " s, crank " << s.crank * u::deg_per_rad << " deg, T "
             << s.torque << " N m, beta " << s.rotation << " rad, pins "
             << s.pins_in_contact() << ", iterations " << s.iterations
-            << ", E_kin+E_el " << e.kinetic + e.elastic
-            << " J, balance error " << e.balance << " J, " << elapsed
-            << " s elapsed, ~" << remaining << " s left" << std::endl;
+            << ", E_kin+E_el " << e.kinetic + e.elastic << " J, balance error "
+            << e.balance << " J, " << elapsed << " s elapsed, ~" << remaining
+            << " s left" << std::endl;
     }
 
 
@@ -231,23 +232,21 @@ namespace cycloid
     void
     TransientRun<dim>::run()
     {
-      const auto &t     = settings.transient;
-      const auto &dir   = settings.run.stage.output_directory;
-      const auto  begin = std::chrono::steady_clock::now();
+      const auto                 &t     = settings.transient;
+      const auto                 &dir   = settings.run.stage.output_directory;
+      const auto                  begin = std::chrono::steady_clock::now();
       std::vector<std::uintmax_t> sizes;
-      const unsigned int          first = start(sizes);
-      postprocess::Report::Options options;
-      options.directory        = dir;
-      options.rotation_control = settings.run.loading.rotation_control;
-      options.energy           = true;
-      options.fluctuation      = false;
-      options.resume           = t.resume;
-      options.resume_sizes     = sizes;
+      const unsigned int          first   = start(sizes);
+      auto                        options = report_options(settings.run);
+      options.energy                      = true;
+      options.fluctuation                 = false;
+      options.resume                      = t.resume;
+      options.resume_sizes                = sizes;
       postprocess::Report report(options, comm);
       pcout << "  transient: " << t.scheme_name << ", dt " << t.time_step
             << " s, " << time.n_steps() << " steps to "
-            << time.time(time.n_steps()) << " s, crank speed "
-            << t.crank_speed << " deg/s" << std::endl;
+            << time.time(time.n_steps()) << " s, crank speed " << t.crank_speed
+            << " deg/s" << std::endl;
 
       for (unsigned int step = first + 1; step <= time.last_step(); ++step)
         {

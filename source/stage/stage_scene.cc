@@ -80,8 +80,7 @@ namespace cycloid
       std::ostringstream s;
       s << settings.scene.dimension << "D, " << settings.scene.n_discs
         << " disc(s), "
-        << (settings.scene.pins == Scene::PinModel::rigid ? "rigid" :
-                                                             "elastic")
+        << (settings.scene.pins == Scene::PinModel::rigid ? "rigid" : "elastic")
         << " pins";
       return s.str();
     }
@@ -156,7 +155,7 @@ namespace cycloid
       cs.residual_tolerance = c.residual_tolerance;
       cs.formulation        = c.formulation;
       cs.solver             = c.linear_solver;
-      contact = std::make_unique<contact::ContactProblem<dim>>(
+      contact               = std::make_unique<contact::ContactProblem<dim>>(
         tria, settings.mesh.degree, materials, cs);
 
       std::set<dealii::types::material_id> discs;
@@ -207,13 +206,13 @@ namespace cycloid
     {
       dealii::TimerOutput::Scope t(timing, "setup system");
       contact->setup();
-      const auto &el      = contact->elasticity();
-      const auto &fe      = el.finite_element();
-      const auto  load_id = settings.scene.load_introduction ==
-                                Scene::LoadIntroduction::bore ?
-                              ids::bore :
-                              ids::crank_hole;
-      auto        values  = node_values(el);
+      const auto &el = contact->elasticity();
+      const auto &fe = el.finite_element();
+      const auto  load_id =
+        settings.scene.load_introduction == Scene::LoadIntroduction::bore ?
+           ids::bore :
+           ids::crank_hole;
+      auto                                         values = node_values(el);
       std::vector<dealii::types::global_dof_index> indices(
         fe.n_dofs_per_cell());
       std::vector<dealii::types::global_dof_index>      fixed;
@@ -237,8 +236,10 @@ namespace cycloid
                 if (fe.has_support_on_face(i, f))
                   {
                     const auto [comp, node] = fe.system_to_component_index(i);
-                    load[indices[i]]        = unit_rotation(
-                      centre, values.quadrature_point(node), comp);
+                    load[indices[i]] =
+                      unit_rotation(centre,
+                                    values.quadrature_point(node),
+                                    comp);
                   }
             }
         }
@@ -344,7 +345,7 @@ namespace cycloid
       dealii::TimerOutput::Scope t(timing, "refine at contacts");
       // Cells of any body next to an active node, up to the level that the
       // a-priori refinements plus the adaptive cycles allow.
-      const auto        &m   = settings.mesh;
+      const auto        &m = settings.mesh;
       const unsigned int cap =
         m.global_refinements + m.contact_refinements + m.adaptive_cycles;
       std::vector<dealii::Point<dim>> points;
@@ -382,14 +383,12 @@ namespace cycloid
     {
       // The nodes that the analytical model's rotation pushes into the pins
       // (an empty set leaves the discs free).
-      const double beta = settings.rotation_control ?
-                            load :
-                            model.solve(psi, load, 0.).rotation;
+      const double beta =
+        settings.rotation_control ? load : model.solve(psi, load, 0.).rotation;
       contact->initialise_active_set([&](const contact::SlaveNode<dim> &s) {
         const dealii::Point<2> c = geo.disc_centre(s.body, psi);
-        const double           n_dot_u =
-          beta * (s.normal[1] * (s.position[0] - c[0]) -
-                  s.normal[0] * (s.position[1] - c[1]));
+        const double n_dot_u = beta * (s.normal[1] * (s.position[0] - c[0]) -
+                                       s.normal[0] * (s.position[1] - c[1]));
         return s.gap0 + n_dot_u < 0;
       });
     }
@@ -436,10 +435,10 @@ namespace cycloid
     void
     StageScene<dim>::sum_pin_forces(std::vector<results::PinState> &pins) const
     {
-      const unsigned int zp        = settings.geometry.n_pins;
-      const double       scale     = width_scale();
-      const auto        &slaves    = contact->slave_nodes();
-      const auto        &reactions = contact->slave_reactions();
+      const unsigned int  zp        = settings.geometry.n_pins;
+      const double        scale     = width_scale();
+      const auto         &slaves    = contact->slave_nodes();
+      const auto         &reactions = contact->slave_reactions();
       std::vector<double> moment(pins.size(), 0.);
       for (const unsigned int i : contact->active_set())
         {
@@ -483,9 +482,9 @@ namespace cycloid
       // half a node spacing on each side.
       const auto            &slaves = contact->slave_nodes();
       const dealii::Point<2> c      = geo.pin_centre(j);
-      const double           a0     = std::atan2(contact_point[1] - c[1],
-                                     contact_point[0] - c[0]);
-      const auto             angle  = [&](const contact::SlaveNode<dim> &s) {
+      const double           a0 =
+        std::atan2(contact_point[1] - c[1], contact_point[0] - c[0]);
+      const auto angle = [&](const contact::SlaveNode<dim> &s) {
         return std::remainder(std::atan2(s.position[1] - c[1],
                                          s.position[0] - c[0]) -
                                 a0,
@@ -524,12 +523,12 @@ namespace cycloid
       const unsigned int         zp = settings.geometry.n_pins;
       const unsigned int         nd = settings.scene.n_discs;
       results::StageState        s;
-      s.crank    = psi;
-      s.torque   = settings.rotation_control ? stage_torque(result.reaction) :
-                                               load;
-      s.rotation = result.beta;
-      s.k_tangent = result.tangent * width_scale() * u::Nm_per_Nmm;
-      s.dofs      = contact->elasticity().n_dofs();
+      s.crank = psi;
+      s.torque =
+        settings.rotation_control ? stage_torque(result.reaction) : load;
+      s.rotation          = result.beta;
+      s.k_tangent         = result.tangent * width_scale() * u::Nm_per_Nmm;
+      s.dofs              = contact->elasticity().n_dofs();
       s.iterations        = result.iterations;
       s.linear_iterations = result.linear_iterations;
       s.pins.resize(nd * zp);
@@ -558,13 +557,14 @@ namespace cycloid
             p.phase         = pc.phase;
             p.contact_point = pc.contact_point;
             p.approach      = s.rotation * pc.arm - pc.clearance;
-            p.contact_halfwidth = contact_halfwidth(d, pc.pin, pc.contact_point);
-            p.hertz_halfwidth   = analytic::stage_hertz_half_width(
-              p.fn,
-              pc.curvature_radius,
-              settings.geometry,
-              settings.material,
-              settings.scene);
+            p.contact_halfwidth =
+              contact_halfwidth(d, pc.pin, pc.contact_point);
+            p.hertz_halfwidth =
+              analytic::stage_hertz_half_width(p.fn,
+                                               pc.curvature_radius,
+                                               settings.geometry,
+                                               settings.material,
+                                               settings.scene);
             s.reaction_torque += p.fn * p.arm * u::Nm_per_Nmm;
           }
       s.takeup = (s.torque >= 0 ? 1. : -1.) * takeup;

@@ -53,8 +53,8 @@ namespace cycloid
      * width, pin radius and moduli (rigid pins add no compliance).
      */
     double
-    stage_hertz_half_width(const double                          force,
-                           const double                          profile_curvature_radius,
+    stage_hertz_half_width(const double force,
+                           const double profile_curvature_radius,
                            const geometry::GeometryParameters   &geometry,
                            const parameters::MaterialParameters &material,
                            const parameters::SceneParameters    &scene);

@@ -20,10 +20,10 @@ namespace cycloid
      */
     struct ModelSettings
     {
-      geometry::GeometryParameters   geometry;
-      parameters::MaterialParameters material;
-      parameters::SceneParameters    scene;
-      AnalyticParameters             analytic;
+      geometry::GeometryParameters   geometry; ///< Subsection `Geometry`.
+      parameters::MaterialParameters material; ///< Subsection `Material`.
+      parameters::SceneParameters    scene;    ///< Subsection `Scene`.
+      AnalyticParameters             analytic; ///< Subsection `Analytic`.
     };
 
     /**

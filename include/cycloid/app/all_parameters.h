@@ -30,14 +30,15 @@ namespace cycloid
      */
     struct AllParameters
     {
-      parameters::RunParameters      run;
-      geometry::GeometryParameters   geometry;
-      parameters::MaterialParameters material;
-      parameters::LoadingParameters  loading;
-      parameters::SceneParameters    scene;
-      analytic::AnalyticParameters analytic;
-      mesh::MeshParameters         mesh;
-      contact::ContactParameters   contact;
+      parameters::RunParameters run; ///< Top level: `Run`, `Output directory`.
+      geometry::GeometryParameters   geometry; ///< Subsection `Geometry`.
+      parameters::MaterialParameters material; ///< Subsection `Material`.
+      parameters::LoadingParameters  loading;  ///< Subsection `Loading`.
+      parameters::SceneParameters    scene;    ///< Subsection `Scene`.
+      analytic::AnalyticParameters   analytic; ///< Subsection `Analytic`.
+      mesh::MeshParameters           mesh;     ///< Subsection `Mesh`.
+      contact::ContactParameters
+        contact; ///< Subsections `Contact` and `Solver`.
       /** Subsection Transient. */
       dynamics::TransientParameters transient;
 

@@ -22,9 +22,9 @@ namespace cycloid
      * exact circles by manifolds, global refinements, then local
      * refinements around the contact (radius 3 a), with hanging nodes.
      *
-     * Defaults: design.md's two-cylinder case (r1 = 10, r2 = 13 mm,
-     * E1 = 30000, nu1 = 0.25, E2 = 29120, nu2 = 0.3 MPa, F = 3200 N/mm:
-     * a = 1.20 mm).
+     * Defaults: the two-cylinder case of doc/design-basis.md §2.3 (r1 = 10, r2
+     * = 13 mm, E1 = 30000, nu1 = 0.25, E2 = 29120, nu2 = 0.3 MPa, F = 3200
+     * N/mm: a = 1.20 mm).
      */
     struct HertzCase
     {

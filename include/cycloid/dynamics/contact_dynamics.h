@@ -16,7 +16,7 @@ namespace cycloid
     /** Settings of ContactDynamics. */
     struct DynamicsSettings
     {
-      Scheme scheme = Scheme::contact_stabilised;
+      Scheme scheme = Scheme::contact_stabilised; ///< The time scheme.
       /** rho_inf of generalized-alpha [-]. */
       double spectral_radius = 0.8;
       /** Rayleigh damping C = a M + b K: a [1/s]. */
@@ -33,8 +33,8 @@ namespace cycloid
       contact::ContactState state;
       /** Active-set iterations of the step (projection included). */
       unsigned int iterations = 0;
-      double       elastic    = 0;
-      double       kinetic    = 0;
+      double       elastic    = 0; ///< Elastic energy.
+      double       kinetic    = 0; ///< Kinetic energy.
       /** Work of the load surface (torque or prescribed rotation). */
       double bore_work = 0;
       /** Work of the moving obstacles: -sum lambda [G_{n+1}(u_mid) -

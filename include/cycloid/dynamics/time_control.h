@@ -30,8 +30,8 @@ namespace cycloid
         : t(t)
         , crank0(crank0)
         , value(load)
-        , steps(static_cast<unsigned int>(std::llround(t.end_time /
-                                                        t.time_step)))
+        , steps(
+            static_cast<unsigned int>(std::llround(t.end_time / t.time_step)))
       {
         AssertThrow(t.end_time >= t.time_step,
                     dealii::ExcMessage(

@@ -127,7 +127,7 @@ namespace cycloid
      * and curvature, the kinematic assembly of one or two discs at a crank
      * angle, and per-pin contact quantities found by a closest-point search.
      *
-     * The profile in the disc frame (design.md, seed eq. with
+     * The profile in the disc frame (doc/design-basis.md §2.1, seed eq. with
      * `phi^-1(K1,phi)` read as S^-1/2) is
      * @f[
      *   P(\phi) = R e^{i\alpha} - e\,e^{-i\gamma}
@@ -143,9 +143,9 @@ namespace cycloid
      * distance r. One tooth spans 2 pi in phi; the closed profile spans
      * [0, 2 pi zc).
      *
-     * Assembly (design.md): pin j at rp (cos 2 pi j/zp, sin 2 pi j/zp);
-     * disc 0 centred at e (cos psi, sin psi) and turned by -psi/zc; disc 1
-     * at crank angle psi + pi.
+     * Assembly (doc/design-basis.md §2.2): pin j at rp (cos 2 pi j/zp, sin 2 pi
+     * j/zp); disc 0 centred at e (cos psi, sin psi) and turned by -psi/zc; disc
+     * 1 at crank angle psi + pi.
      */
     class CycloidGeometry
     {

@@ -71,16 +71,26 @@ namespace cycloid
         return m - pin(0);
       }
 
-      constexpr dealii::types::boundary_id flank         = 1;
-      constexpr dealii::types::boundary_id bore          = 2;
-      constexpr dealii::types::boundary_id crank_hole    = 3;
-      constexpr dealii::types::boundary_id pin_surface   = 4;
-      constexpr dealii::types::boundary_id housing_seat  = 5;
-      constexpr dealii::types::boundary_id housing_outer = 6;
-      constexpr dealii::types::boundary_id housing_inner = 7;
-      constexpr dealii::types::boundary_id disc_axial    = 8;
-      constexpr dealii::types::boundary_id pin_axial     = 9;
-      constexpr dealii::types::boundary_id housing_axial = 10;
+      constexpr dealii::types::boundary_id flank =
+        1; ///< Cycloid tooth flanks (the contact slave surface).
+      constexpr dealii::types::boundary_id bore =
+        2; ///< Central bore of a disc.
+      constexpr dealii::types::boundary_id crank_hole =
+        3; ///< Crank (eccentric bearing) holes of a disc.
+      constexpr dealii::types::boundary_id pin_surface =
+        4; ///< Pin surfaces (the contact masters).
+      constexpr dealii::types::boundary_id housing_seat =
+        5; ///< Housing grooves that hold the pins.
+      constexpr dealii::types::boundary_id housing_outer =
+        6; ///< Outer surface of the housing (held).
+      constexpr dealii::types::boundary_id housing_inner =
+        7; ///< Free inner surface of the housing between the seats.
+      constexpr dealii::types::boundary_id disc_axial =
+        8; ///< End faces of a disc (3D).
+      constexpr dealii::types::boundary_id pin_axial =
+        9; ///< End faces of a pin (3D).
+      constexpr dealii::types::boundary_id housing_axial =
+        10; ///< End faces of the housing (3D).
 
       /** Boundary id of the axial (end) faces of body @p m, a disc, a pin
        * or the housing (3D). */

@@ -33,12 +33,16 @@ namespace cycloid
                              const unsigned int               disc,
                              const double                     psi);
 
+      /** A copy (deal.II's manifold interface). */
       std::unique_ptr<dealii::Manifold<dim, dim>>
       clone() const override;
 
+      /** Chart coordinates (profile parameter, and z in 3D) of
+       * @p space_point. */
       dealii::Point<dim - 1>
       pull_back(const dealii::Point<dim> &space_point) const override;
 
+      /** The point of the profile surface at @p chart_point. */
       dealii::Point<dim>
       push_forward(const dealii::Point<dim - 1> &chart_point) const override;
 

@@ -22,14 +22,14 @@ namespace cycloid
      */
     struct EnergyRow
     {
-      unsigned int step         = 0;
-      double       time_s       = 0;
-      double       kinetic      = 0;
-      double       elastic      = 0;
+      unsigned int step         = 0; ///< Time step index.
+      double       time_s       = 0; ///< Time at the end of the step [s].
+      double       kinetic      = 0; ///< Kinetic energy [J].
+      double       elastic      = 0; ///< Elastic energy [J].
       double       external     = 0; ///< load surface + moving obstacles
-      double       bore_work    = 0;
-      double       contact_work = 0;
-      double       dissipated   = 0;
+      double       bore_work    = 0; ///< Work of the load surface [J].
+      double       contact_work = 0; ///< Work of the moving obstacles [J].
+      double       dissipated   = 0; ///< Rayleigh damping dissipation [J].
       /** E_kin + E_el + D - W - E_0 [J]. */
       double balance = 0;
       /** balance over the largest energy level reached [-]. */
@@ -45,10 +45,13 @@ namespace cycloid
     double
     peak_memory_MB(const MPI_Comm comm);
 
-    /** Mean, minimum, maximum and (max - min) / mean of @p values. */
+    /** Mean, minimum, maximum and (max - min) / mean of a series. */
     struct Statistics
     {
-      double mean = 0, min = 0, max = 0, fluctuation = 0;
+      double mean        = 0; ///< Mean.
+      double min         = 0; ///< Smallest value.
+      double max         = 0; ///< Largest value.
+      double fluctuation = 0; ///< (max - min) / mean.
 
       /** The statistics of @p values (not empty). */
       explicit Statistics(const std::vector<double> &values);
@@ -86,8 +89,9 @@ namespace cycloid
         /** Continue the files of a run being resumed instead of starting
          * them: truncate each to the size in @p resume_sizes (the sizes at
          * the checkpoint, in the order of files()), then append. */
-        bool                       resume = false;
-        std::vector<std::uintmax_t> resume_sizes;
+        bool resume = false;
+        std::vector<std::uintmax_t>
+          resume_sizes; ///< Sizes of files() at the checkpoint [bytes].
       };
 
       /** Open (or, resuming, truncate and reopen) the files on rank 0. */
@@ -144,12 +148,12 @@ namespace cycloid
         std::vector<double> crank, k_tangent, k_secant;
       };
 
-      const Options        options;
-      const bool           active;
-      std::ofstream        stiffness;
-      std::ofstream        pin_forces;
-      std::ofstream        energy;
-      std::vector<Series>  series;
+      const Options       options;
+      const bool          active;
+      std::ofstream       stiffness;
+      std::ofstream       pin_forces;
+      std::ofstream       energy;
+      std::vector<Series> series;
     };
   } // namespace postprocess
 } // namespace cycloid

@@ -28,11 +28,11 @@ namespace cycloid
       /** What the file's attributes say about the run. */
       struct Attributes
       {
-        std::string  scheme;
-        double       time_step_s           = 0;
-        double       crank_speed_deg_per_s = 0;
-        unsigned int n_pins                = 0;
-        unsigned int n_discs               = 0;
+        std::string  scheme;                    ///< Name of the time scheme.
+        double       time_step_s           = 0; ///< Time step [s].
+        double       crank_speed_deg_per_s = 0; ///< Crank speed [deg/s].
+        unsigned int n_pins                = 0; ///< Number of pins.
+        unsigned int n_discs               = 0; ///< Number of discs.
       };
 
       /** An empty series of a run described by @p attributes. */
@@ -61,9 +61,9 @@ namespace cycloid
       all();
 
       const Attributes    attributes;
-      std::vector<double> time, crank_deg, torque, rotation, k_secant,
-        kinetic, elastic, external_work, dissipated, balance, penetration,
-        iterations, angular_momentum;
+      std::vector<double> time, crank_deg, torque, rotation, k_secant, kinetic,
+        elastic, external_work, dissipated, balance, penetration, iterations,
+        angular_momentum;
       /** Per step, n_discs * n_pins values each. */
       std::vector<double> fx, fy, fn;
     };

@@ -48,11 +48,11 @@ namespace cycloid
      */
     struct PinState
     {
-      unsigned int disc = 0;
-      unsigned int pin  = 0;
-      /** Force of the pin on the disc, housing frame [N]. */
+      unsigned int disc = 0; ///< Disc index, from 0.
+      unsigned int pin  = 0; ///< Pin index, from 0 (pin j at 360 deg j/zp).
+      /** Force of the pin on the disc, housing frame: x component [N]. */
       double fx = 0;
-      double fy = 0;
+      double fy = 0; ///< y component of the force [N].
       /** Its magnitude [N]. */
       double fn = 0;
       /** Signed moment arm about the disc centre; positive arms resist a

@@ -29,9 +29,9 @@ namespace cycloid
       /** What the run reads from the parameter file. */
       struct Settings
       {
-        analytic::ModelSettings       model;
-        parameters::LoadingParameters loading;
-        std::string                   output_directory = "output";
+        analytic::ModelSettings       model;     ///< The analytical model.
+        parameters::LoadingParameters loading;   ///< Torques and crank angles.
+        std::string output_directory = "output"; ///< Where the results go.
       };
 
       /** Build the model (checking the geometry). */

@@ -24,9 +24,9 @@ namespace cycloid
       /** What the run reads from the parameter file. */
       struct Settings
       {
-        mesh::MeshSettings mesh;
-        mesh::MeshRequest  request;
-        std::string        output_directory = "output";
+        mesh::MeshSettings mesh;                 ///< The scene to mesh.
+        mesh::MeshRequest  request;              ///< Placement and loaded side.
+        std::string output_directory = "output"; ///< Where the mesh files go.
       };
 
       /** Nothing is built before run(): the output directory must exist

@@ -2,6 +2,7 @@
 #define cycloid_runs_quasi_static_h
 
 #include <cycloid/parameters/loading.h>
+#include <cycloid/postprocess/report.h>
 #include <cycloid/stage/stage_scene.h>
 
 #include <memory>
@@ -15,8 +16,8 @@ namespace cycloid
     /** What an FE run of load states reads from the parameter file. */
     struct FeRunSettings
     {
-      stage::StageSettings          stage;
-      parameters::LoadingParameters loading;
+      stage::StageSettings          stage;   ///< The FE scene.
+      parameters::LoadingParameters loading; ///< Loads and crank angles.
       /** Write the solution fields of every state. */
       bool write_solution = true;
     };
@@ -25,6 +26,10 @@ namespace cycloid
      * [rad] (the loaded side from the sign of its loads). */
     mesh::MeshRequest
     mesh_request(const FeRunSettings &settings, const double psi);
+
+    /** The report of a run of load states with @p settings. */
+    postprocess::Report::Options
+    report_options(const FeRunSettings &settings);
 
     /**
      * @brief `Run = quasi-static`: the FE contact of the scene at
@@ -50,9 +55,9 @@ namespace cycloid
       static const stage::StageSettings &
       announce(const FeRunSettings &settings, const MPI_Comm comm);
 
-      const FeRunSettings      settings;
-      const MPI_Comm           comm;
-      stage::StageScene<dim>   scene;
+      const FeRunSettings    settings;
+      const MPI_Comm         comm;
+      stage::StageScene<dim> scene;
     };
   } // namespace runs
 } // namespace cycloid

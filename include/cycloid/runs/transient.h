@@ -53,8 +53,8 @@ namespace cycloid
       /** What the run reads from the parameter file. */
       struct Settings
       {
-        FeRunSettings                  run;
-        dynamics::TransientParameters transient;
+        FeRunSettings                 run;       ///< The FE scene and its load.
+        dynamics::TransientParameters transient; ///< Subsection `Transient`.
       };
 
       /** Build the scene and the time scheme on it; nothing solved yet. */
@@ -77,7 +77,7 @@ namespace cycloid
 
       /** Write the checkpoint of step @p step. */
       void
-      write_checkpoint(const unsigned int step,
+      write_checkpoint(const unsigned int         step,
                        const postprocess::Report &report);
 
       /** Angular momentum of the discs about their centres, g . M v with g

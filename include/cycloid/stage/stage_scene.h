@@ -5,7 +5,6 @@
 #include <deal.II/base/timer.h>
 
 #include <deal.II/distributed/shared_tria.h>
-
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <cycloid/analytic/stage_model.h>
@@ -39,12 +38,14 @@ namespace cycloid
      */
     struct StageSettings
     {
-      geometry::GeometryParameters   geometry;
-      parameters::MaterialParameters material;
-      parameters::SceneParameters    scene;
-      mesh::MeshParameters           mesh;
-      contact::ContactParameters     contact;
-      analytic::AnalyticParameters   analytic;
+      geometry::GeometryParameters   geometry; ///< Subsection `Geometry`.
+      parameters::MaterialParameters material; ///< Subsection `Material`.
+      parameters::SceneParameters    scene;    ///< Subsection `Scene`.
+      mesh::MeshParameters           mesh;     ///< Subsection `Mesh`.
+      contact::ContactParameters
+        contact; ///< Subsections `Contact` and `Solver`.
+      analytic::AnalyticParameters
+        analytic; ///< Subsection `Analytic` (warm start).
       /** The loads of solve() are rotations [rad], not torques [N m]. */
       bool rotation_control = false;
       /** Where the solution fields go. */
@@ -238,21 +239,21 @@ namespace cycloid
                         const unsigned int      j,
                         const dealii::Point<2> &contact_point) const;
 
-      const StageSettings                          settings;
-      const MPI_Comm                               comm;
-      const geometry::CycloidGeometry              geo;
-      const analytic::StageModel                   model;
+      const StageSettings             settings;
+      const MPI_Comm                  comm;
+      const geometry::CycloidGeometry geo;
+      const analytic::StageModel      model;
       /** Crank angle of the mesh [rad]. */
-      const double                                 psi_mesh;
+      const double psi_mesh;
       /** Crank angle of the discs' placement [rad]. */
-      double                                       psi;
-      dealii::ConditionalOStream                   pcout;
-      mutable dealii::TimerOutput                  timing;
-      dealii::parallel::shared::Triangulation<dim> tria;
-      std::unique_ptr<contact::PinModel<dim>>      pin_model;
+      double                                        psi;
+      dealii::ConditionalOStream                    pcout;
+      mutable dealii::TimerOutput                   timing;
+      dealii::parallel::shared::Triangulation<dim>  tria;
+      std::unique_ptr<contact::PinModel<dim>>       pin_model;
       std::unique_ptr<contact::ContactProblem<dim>> contact;
-      dealii::TrilinosWrappers::MPI::Vector        rotation;
-      bool                                         warm = false;
+      dealii::TrilinosWrappers::MPI::Vector         rotation;
+      bool                                          warm = false;
     };
   } // namespace stage
 } // namespace cycloid
