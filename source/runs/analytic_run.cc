@@ -42,7 +42,9 @@ namespace cycloid
     void
     AnalyticRun::run()
     {
-      postprocess::Report report({settings.output_directory}, comm);
+      postprocess::Report::Options options;
+      options.directory = settings.output_directory;
+      postprocess::Report report(options, comm);
       // Every rank checked the geometry (so a bad prm fails everywhere
       // alike); only rank 0 computes and writes.
       if (dealii::Utilities::MPI::this_mpi_process(comm) != 0)
