@@ -22,16 +22,13 @@ namespace cycloid
 {
   namespace elasticity
   {
-    namespace
+    std::pair<double, double>
+    lame_parameters(const parameters::ElasticMaterial &m)
     {
-      /** Lame parameters (lambda, mu) [MPa] of a material. */
-      std::pair<double, double>
-      lame(const parameters::ElasticMaterial &m)
-      {
-        const double E = m.youngs_modulus, nu = m.poissons_ratio;
-        return {E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
-      }
-    } // namespace
+      const double E = m.youngs_modulus, nu = m.poissons_ratio;
+      return {E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
+    }
+
 
 
     template <int dim>
@@ -190,7 +187,7 @@ namespace cycloid
           AssertThrow(it != materials.end(),
                       dealii::ExcMessage("elasticity: no material for body " +
                                          std::to_string(cell->material_id())));
-          const auto [lambda, mu] = lame(it->second);
+          const auto [lambda, mu] = lame_parameters(it->second);
 
           cell_matrix = 0;
           cell_rhs    = 0;
@@ -353,7 +350,7 @@ namespace cycloid
           if (!cell->is_locally_owned())
             continue;
           const auto &m           = materials.at(cell->material_id());
-          const auto [lambda, mu] = lame(m);
+          const auto [lambda, mu] = lame_parameters(m);
           const double rho        = density(cell->material_id());
           fe_values.reinit(cell);
           fe_values[disp].get_function_symmetric_gradients(u, strain);
@@ -444,7 +441,7 @@ namespace cycloid
           if (!cell->is_locally_owned())
             continue;
           const auto &m           = materials.at(cell->material_id());
-          const auto [lambda, mu] = lame(m);
+          const auto [lambda, mu] = lame_parameters(m);
           const double rho        = density(cell->material_id());
           fe_values.reinit(cell);
           fe_values[disp].get_function_symmetric_gradients(u, strain);
