@@ -6,21 +6,43 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 
 namespace cycloid
 {
   namespace contact
   {
+    namespace
+    {
+      /** A TimerOutput::Scope if there is a timer, else nothing. */
+      class OptionalScope
+      {
+      public:
+        OptionalScope(dealii::TimerOutput *timer, const std::string &section)
+        {
+          if (timer)
+            scope.emplace(*timer, section);
+        }
+
+      private:
+        std::optional<dealii::TimerOutput::Scope> scope;
+      };
+    } // namespace
+
+
+
     template <int dim>
     ActiveSetSolver<dim>::ActiveSetSolver(
       elasticity::LinearElasticity<dim> &problem,
       const ConstraintFormulation<dim>  &formulation,
       const ContactSettings             &settings,
-      const ContactSystem<dim>          &system)
+      const ContactSystem<dim>          &system,
+      dealii::TimerOutput               *timer)
       : problem(problem)
       , formulation(formulation)
       , settings(settings)
       , system(system)
+      , timer(timer)
       , comm(problem.dof_handler().get_triangulation().get_communicator())
       , verbose(std::getenv("CYCLOID_DEBUG") &&
                 dealii::Utilities::MPI::this_mpi_process(comm) == 0)
@@ -49,17 +71,22 @@ namespace cycloid
           clock.restart();
           assemble(solution.active);
           const double t_assemble = clock.wall_time();
+          setup_preconditioner(state);
+          const double t_preconditioner = clock.wall_time();
           solve_linear_systems(state);
           if (verbose)
             std::cerr << "  [active set] " << label << ", iteration " << it
                       << ": constraints+assembly " << t_assemble
-                      << " s, solves (with preconditioner set-up) "
-                      << clock.wall_time() - t_assemble << " s / " << n0
-                      << " + " << n1 << " it" << std::endl;
+                      << " s, preconditioner " << t_preconditioner - t_assemble
+                      << " s, solves " << clock.wall_time() - t_preconditioner
+                      << " s / " << n0 << " + " << n1 << " it" << std::endl;
 
-          superpose(load_control, value, label, state);
-          const std::set<unsigned int> next =
-            next_active_set(solution.active, state.beta, solution.gaps);
+          std::set<unsigned int> next;
+          {
+            const OptionalScope scope(timer, "contact: active-set update");
+            superpose(load_control, value, label, state);
+            next = next_active_set(solution.active, state.beta, solution.gaps);
+          }
           state.iterations = it + 1;
           if (verbose)
             std::cerr << "  [active set] " << label << ", iteration " << it
@@ -113,6 +140,7 @@ namespace cycloid
     void
     ActiveSetSolver<dim>::assemble(const std::set<unsigned int> &active)
     {
+      const OptionalScope scope(timer, "contact: constraints and assembly");
       // Set 0: the gaps, no load; set 1: the unit load, no gaps. Same
       // structure, so one matrix serves both (superposition).
       problem.setup_constraints(
@@ -124,8 +152,20 @@ namespace cycloid
 
     template <int dim>
     void
+    ActiveSetSolver<dim>::setup_preconditioner(ContactState &state)
+    {
+      const OptionalScope scope(timer, "contact: preconditioner");
+      if (problem.setup_preconditioner(settings.solver))
+        ++state.preconditioner_setups;
+    }
+
+
+
+    template <int dim>
+    void
     ActiveSetSolver<dim>::solve_linear_systems(ContactState &state)
     {
+      const OptionalScope scope(timer, "contact: linear solves");
       n0 = problem.solve_set(0, settings.solver, settings.solver_tolerance, u0);
       n1 = problem.solve_set(1, settings.solver, settings.solver_tolerance, u1);
       state.linear_iterations += n0 + n1;
@@ -226,7 +266,8 @@ namespace cycloid
                                  ContactState         &state,
                                  ContactSolution<dim> &solution) const
     {
-      const auto &owned = problem.locally_owned_dofs();
+      const OptionalScope scope(timer, "contact: residual and reactions");
+      const auto         &owned = problem.locally_owned_dofs();
       {
         dealii::TrilinosWrappers::MPI::Vector a(owned, comm), b(owned, comm);
         a = u0;

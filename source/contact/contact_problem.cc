@@ -64,6 +64,15 @@ namespace cycloid
 
     template <int dim>
     void
+    ContactProblem<dim>::set_timer(dealii::TimerOutput &t)
+    {
+      timer = &t;
+    }
+
+
+
+    template <int dim>
+    void
     ContactProblem<dim>::setup()
     {
       problem->set_extra_relevant_dofs({});
@@ -250,7 +259,8 @@ namespace cycloid
                                      const std::string &label)
     {
       const ContactSystem<dim> system{slaves, ties, fixed, load};
-      ActiveSetSolver<dim>     solver(*problem, *formulation, settings, system);
+      ActiveSetSolver<dim>     solver(
+        *problem, *formulation, settings, system, timer);
       return solver.solve(load_control, value, label, solution);
     }
 

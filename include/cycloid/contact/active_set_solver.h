@@ -44,12 +44,16 @@ namespace cycloid
      * Wohlmuth) of one load state; see ContactProblem for the method.
      *
      * Per iteration, for the current set: the constraints and the matrix
-     * with two right-hand sides (gaps, unit load), the two solves u0, u1
-     * (for a fixed set u = u0 + beta u1; they share one preconditioner),
-     * the beta that meets the load (load control) or the given beta, and
-     * the next set from the nodal reactions and gaps. The environment
-     * variable CYCLOID_DEBUG prints each iteration's times and set sizes to
-     * stderr.
+     * with two right-hand sides (gaps, unit load), the preconditioner, the
+     * two solves u0, u1 (for a fixed set u = u0 + beta u1), the beta that
+     * meets the load (load control) or the given beta, and the next set
+     * from the nodal reactions and gaps. If a timer is given, these stages
+     * are timed in its sections "contact: constraints and assembly",
+     * "contact: preconditioner", "contact: linear solves", "contact:
+     * active-set update" and, once per state, "contact: residual and
+     * reactions". Every stage is collective, so the sections are entered
+     * on all ranks alike. The environment variable CYCLOID_DEBUG prints
+     * each iteration's times and set sizes to stderr.
      *
      * One object per load state: it holds the state's solutions, which
      * warm-start CG in the next iteration.
@@ -59,11 +63,13 @@ namespace cycloid
     {
     public:
       /** Solve on @p problem (its DoFs distributed) for @p system,
-       * constrained as @p formulation says; all held by reference. */
+       * constrained as @p formulation says; all held by reference.
+       * @p timer may be null (nothing timed). */
       ActiveSetSolver(elasticity::LinearElasticity<dim> &problem,
                       const ConstraintFormulation<dim>  &formulation,
                       const ContactSettings             &settings,
-                      const ContactSystem<dim>          &system);
+                      const ContactSystem<dim>          &system,
+                      dealii::TimerOutput               *timer);
 
       /**
        * Iterate from the active set in @p solution until it repeats, for
@@ -90,6 +96,10 @@ namespace cycloid
       /** Constraints, matrix and both right-hand sides for @p active. */
       void
       assemble(const std::set<unsigned int> &active);
+
+      /** Build the preconditioner of the new matrix. */
+      void
+      setup_preconditioner(ContactState &state);
 
       /** u0 (gaps, no load) and u1 (unit load), warm-started from the
        * previous iteration's. */
@@ -136,6 +146,7 @@ namespace cycloid
       const ConstraintFormulation<dim>  &formulation;
       const ContactSettings             &settings;
       const ContactSystem<dim>           system;
+      dealii::TimerOutput *const         timer;
       const MPI_Comm                     comm;
       /** Print each iteration to stderr (CYCLOID_DEBUG set, rank 0). */
       const bool verbose;

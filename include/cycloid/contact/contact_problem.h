@@ -3,6 +3,7 @@
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/base/timer.h>
 
 #include <deal.II/distributed/tria_base.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -132,6 +133,17 @@ namespace cycloid
       /** Solve for a given beta (rotation control). */
       ContactState
       solve_displacement(const double beta, const std::string &label);
+
+      /**
+       * Time the stages of every later solve in sections of @p timer
+       * ("contact: constraints and assembly", "contact: preconditioner",
+       * "contact: linear solves", "contact: active-set update", "contact:
+       * residual and reactions"; see ActiveSetSolver). The stages are
+       * collective: call it on every rank alike, with a timer that outlives
+       * the solves. Without a call nothing is timed.
+       */
+      void
+      set_timer(dealii::TimerOutput &timer);
 
       /**
        * Rigid placement of the slave bodies relative to the masters: slave
@@ -282,6 +294,8 @@ namespace cycloid
       std::map<dealii::types::global_dof_index, double> load;
       /** The active set and the last state's results. */
       ContactSolution<dim> solution;
+      /** Timer of the solver's stages; null: none. */
+      dealii::TimerOutput *timer = nullptr;
     };
   } // namespace contact
 } // namespace cycloid

@@ -159,6 +159,10 @@ namespace cycloid
       double residual = 0;
       /** Number of active slave nodes. */
       unsigned int n_active = 0;
+      /** Preconditioner set-ups (AMG hierarchies or direct factorisations)
+       * of the state: one per active-set iteration, as each changes the
+       * matrix. */
+      unsigned int preconditioner_setups = 0;
     };
 
     /**

@@ -137,10 +137,21 @@ namespace cycloid
                                    const dealii::Function<dim> *> &tractions);
 
       /**
+       * Build the preconditioner of the current matrix for @p solver (the
+       * AMG hierarchy, or the factorisation of the direct solver) unless it
+       * is built already; returns whether it built one. solve_set() calls
+       * it itself: an explicit call moves the set-up out of the first solve
+       * (e.g. to time it on its own).
+       */
+      bool
+      setup_preconditioner(const Solver solver);
+
+      /**
        * Solve with the right-hand side of constraint set @p k and
        * distribute set k's constraints; @p u receives the solution with
        * ghosts (reinitialised). The preconditioner is built at the first
-       * solve after an assembly and reused. Returns the number of CG
+       * solve after an assembly (unless setup_preconditioner() built it)
+       * and reused. Returns the number of CG
        * iterations (0 for direct). If @p u already holds a vector of the
        * right size (the previous active-set iteration's solution), CG starts
        * from it: the sets of consecutive iterations differ in a few contact
