@@ -1,6 +1,7 @@
 #ifndef cycloid_parameters_loading_h
 #define cycloid_parameters_loading_h
 
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <vector>
@@ -32,7 +33,7 @@ namespace cycloid
           return torques;
         std::vector<double> r;
         for (const double d : rotations_deg)
-          r.push_back(d * 3.14159265358979323846 / 180.);
+          r.push_back(d * dealii::numbers::PI / 180.);
         return r;
       }
       /** Crank angle of a single state, and start of a phase sweep

@@ -1,6 +1,8 @@
 #ifndef cycloid_postprocess_result_writer_h
 #define cycloid_postprocess_result_writer_h
 
+#include <deal.II/base/numbers.h>
+
 #include <fstream>
 #include <ostream>
 #include <string>
@@ -73,7 +75,7 @@ namespace cycloid
     };
 
     /** Radians per arcminute. */
-    constexpr double rad_per_arcmin = 3.14159265358979323846 / (180. * 60.);
+    constexpr double rad_per_arcmin = dealii::numbers::PI / (180. * 60.);
 
     /**
      * @brief Writes `stiffness.csv` and `pin_forces.csv` (one header line,
