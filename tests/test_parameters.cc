@@ -3,6 +3,7 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <cycloid/analytic/stage_model.h>
@@ -153,5 +154,5 @@ TEST(Parameters, PhaseSweepCoversOneClosedPeriod)
   const auto a      = l.crank_angles(0.25);
   ASSERT_EQ(a.size(), 5u);
   EXPECT_NEAR(a.back() - a.front(), 0.25, 1e-15);
-  EXPECT_NEAR(a.front(), 1. * 3.14159265358979 / 180., 1e-12);
+  EXPECT_NEAR(a.front(), 1. * dealii::numbers::PI / 180., 1e-12);
 }

@@ -22,16 +22,13 @@ namespace cycloid
 {
   namespace elasticity
   {
-    namespace
+    std::pair<double, double>
+    lame_parameters(const parameters::ElasticMaterial &m)
     {
-      /** Lame parameters (lambda, mu) [MPa] of a material. */
-      std::pair<double, double>
-      lame(const parameters::ElasticMaterial &m)
-      {
-        const double E = m.youngs_modulus, nu = m.poissons_ratio;
-        return {E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
-      }
-    } // namespace
+      const double E = m.youngs_modulus, nu = m.poissons_ratio;
+      return {E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
+    }
+
 
 
     template <int dim>
@@ -190,7 +187,7 @@ namespace cycloid
           AssertThrow(it != materials.end(),
                       dealii::ExcMessage("elasticity: no material for body " +
                                          std::to_string(cell->material_id())));
-          const auto [lambda, mu] = lame(it->second);
+          const auto [lambda, mu] = lame_parameters(it->second);
 
           cell_matrix = 0;
           cell_rhs    = 0;
@@ -353,7 +350,7 @@ namespace cycloid
           if (!cell->is_locally_owned())
             continue;
           const auto &m           = materials.at(cell->material_id());
-          const auto [lambda, mu] = lame(m);
+          const auto [lambda, mu] = lame_parameters(m);
           const double rho        = density(cell->material_id());
           fe_values.reinit(cell);
           fe_values[disp].get_function_symmetric_gradients(u, strain);
@@ -444,7 +441,7 @@ namespace cycloid
           if (!cell->is_locally_owned())
             continue;
           const auto &m           = materials.at(cell->material_id());
-          const auto [lambda, mu] = lame(m);
+          const auto [lambda, mu] = lame_parameters(m);
           const double rho        = density(cell->material_id());
           fe_values.reinit(cell);
           fe_values[disp].get_function_symmetric_gradients(u, strain);
@@ -594,6 +591,45 @@ namespace cycloid
 
 
     template <int dim>
+    bool
+    LinearElasticity<dim>::setup_preconditioner(const Solver solver)
+    {
+      if (solver == Solver::direct)
+        {
+          if (ready == Ready::direct)
+            return false;
+          direct_control = std::make_unique<dealii::SolverControl>(1, 0);
+          direct = std::make_unique<dealii::TrilinosWrappers::SolverDirect>(
+            *direct_control);
+          direct->initialize(system_matrix);
+          ready = Ready::direct;
+          return true;
+        }
+      if (ready == Ready::amg)
+        return false;
+      // ML with a user-given near-null space (deal.II 9.4 has no
+      // extract_rigid_body_modes): translations and, unless asked
+      // otherwise, rotations.
+      dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic              = true;
+      data.higher_order_elements = fe.degree > 1;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 0.02;
+      Teuchos::ParameterList              parameters;
+      std::unique_ptr<Epetra_MultiVector> unused;
+      data.set_parameters(parameters, unused, system_matrix);
+      null_space = rigid_body_modes(solver == Solver::cg_amg);
+      parameters.set("null space: type", "pre-computed");
+      parameters.set("null space: dimension", null_space->NumVectors());
+      parameters.set("null space: vectors", null_space->Values());
+      amg.initialize(system_matrix, parameters);
+      ready = Ready::amg;
+      return true;
+    }
+
+
+
+    template <int dim>
     unsigned int
     LinearElasticity<dim>::solve_set(const unsigned int k,
                                      const Solver       solver,
@@ -611,40 +647,11 @@ namespace cycloid
             x[i] = u[i];
           x.compress(dealii::VectorOperation::insert);
         }
+      setup_preconditioner(solver);
       if (solver == Solver::direct)
-        {
-          if (ready != Ready::direct)
-            {
-              direct_control = std::make_unique<dealii::SolverControl>(1, 0);
-              direct = std::make_unique<dealii::TrilinosWrappers::SolverDirect>(
-                *direct_control);
-              direct->initialize(system_matrix);
-              ready = Ready::direct;
-            }
-          direct->solve(x, rhs);
-        }
+        direct->solve(x, rhs);
       else
         {
-          if (ready != Ready::amg)
-            {
-              // ML with a user-given near-null space (deal.II 9.4 has no
-              // extract_rigid_body_modes): translations and, unless asked
-              // otherwise, rotations.
-              dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
-              data.elliptic              = true;
-              data.higher_order_elements = fe.degree > 1;
-              data.smoother_sweeps       = 2;
-              data.aggregation_threshold = 0.02;
-              Teuchos::ParameterList              parameters;
-              std::unique_ptr<Epetra_MultiVector> unused;
-              data.set_parameters(parameters, unused, system_matrix);
-              null_space = rigid_body_modes(solver == Solver::cg_amg);
-              parameters.set("null space: type", "pre-computed");
-              parameters.set("null space: dimension", null_space->NumVectors());
-              parameters.set("null space: vectors", null_space->Values());
-              amg.initialize(system_matrix, parameters);
-              ready = Ready::amg;
-            }
           dealii::SolverControl control(std::max<unsigned int>(1000,
                                                                rhs.size() / 10),
                                         tolerance * rhs.l2_norm());

@@ -157,6 +157,9 @@ namespace cycloid
       cs.solver             = c.linear_solver;
       contact               = std::make_unique<contact::ContactProblem<dim>>(
         tria, settings.mesh.degree, materials, cs);
+      // Every run times the active set's stages (assembly, preconditioner,
+      // solves, updates) beside the scene's own.
+      contact->set_timer(timing);
 
       std::set<dealii::types::material_id> discs;
       for (unsigned int d = 0; d < settings.scene.n_discs; ++d)

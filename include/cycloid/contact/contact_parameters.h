@@ -3,7 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <cycloid/contact/contact_problem.h>
+#include <cycloid/contact/contact_types.h>
 #include <cycloid/elasticity/elasticity.h>
 
 #include <string>

@@ -43,23 +43,6 @@ namespace cycloid
     };
 
     /**
-     * @brief Small-strain linear elasticity of several bodies, each with its
-     * own isotropic material (by material id), on a parallel triangulation:
-     * Q_p elements, Trilinos matrices and vectors, CG with an algebraic
-     * multigrid (ML) that is given the rigid-body modes (translations and
-     * rotations) as its near-null space, or a direct solver.
-     *
-     * In 2D the problem is plane strain; forces are per unit thickness.
-     *
-     * The weak form is
-     * @f[
-     *  \sum_{\text{bodies}} \int_{\Omega_b} \varepsilon(v) :
-     *   C_b : \varepsilon(u)\,dx = \int_{\Gamma_N} v \cdot t\,ds ,
-     *  \qquad C_b = \lambda_b\, I\otimes I + 2\mu_b\, \mathbb{I}
-     * @f]
-     * with Dirichlet and other constraints supplied by the caller.
-     */
-    /**
      * @brief Terms of a time-discrete (effective) operator: the matrix
      * becomes A = stiffness K + mass M (+ the inhomogeneities of the
      * constraints), and the first constraint set's right-hand side gains the
@@ -80,6 +63,28 @@ namespace cycloid
       dealii::TrilinosWrappers::MPI::Vector stiffness_load;
     };
 
+    /** Lame parameters (lambda, mu) [MPa] of the isotropic material
+     * @p m: lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu)). */
+    std::pair<double, double>
+    lame_parameters(const parameters::ElasticMaterial &m);
+
+    /**
+     * @brief Small-strain linear elasticity of several bodies, each with its
+     * own isotropic material (by material id), on a parallel triangulation:
+     * Q_p elements, Trilinos matrices and vectors, CG with an algebraic
+     * multigrid (ML) that is given the rigid-body modes (translations and
+     * rotations) as its near-null space, or a direct solver.
+     *
+     * In 2D the problem is plane strain; forces are per unit thickness.
+     *
+     * The weak form is
+     * @f[
+     *  \sum_{\text{bodies}} \int_{\Omega_b} \varepsilon(v) :
+     *   C_b : \varepsilon(u)\,dx = \int_{\Gamma_N} v \cdot t\,ds ,
+     *  \qquad C_b = \lambda_b\, I\otimes I + 2\mu_b\, \mathbb{I}
+     * @f]
+     * with Dirichlet and other constraints supplied by the caller.
+     */
     template <int dim>
     class LinearElasticity
     {
@@ -132,10 +137,21 @@ namespace cycloid
                                    const dealii::Function<dim> *> &tractions);
 
       /**
+       * Build the preconditioner of the current matrix for @p solver (the
+       * AMG hierarchy, or the factorisation of the direct solver) unless it
+       * is built already; returns whether it built one. solve_set() calls
+       * it itself: an explicit call moves the set-up out of the first solve
+       * (e.g. to time it on its own).
+       */
+      bool
+      setup_preconditioner(const Solver solver);
+
+      /**
        * Solve with the right-hand side of constraint set @p k and
        * distribute set k's constraints; @p u receives the solution with
        * ghosts (reinitialised). The preconditioner is built at the first
-       * solve after an assembly and reused. Returns the number of CG
+       * solve after an assembly (unless setup_preconditioner() built it)
+       * and reused. Returns the number of CG
        * iterations (0 for direct). If @p u already holds a vector of the
        * right size (the previous active-set iteration's solution), CG starts
        * from it: the sets of consecutive iterations differ in a few contact
@@ -148,12 +164,6 @@ namespace cycloid
                 const double                           relative_tolerance,
                 dealii::TrilinosWrappers::MPI::Vector &u);
 
-      /**
-       * Equilibrium residual of @p u under constraint set @p k: the l2 norm
-       * of C^T f_int(u) (internal forces condensed onto the unconstrained
-       * DoFs, where equilibrium makes them vanish), and the l2 norm of
-       * f_int(u) itself for scale.
-       */
       /**
        * Use the effective operator of @p terms from the next assemble_sets()
        * on (matrix, the first set's right-hand side, effective_forces() and
@@ -190,6 +200,12 @@ namespace cycloid
       dealii::TrilinosWrappers::MPI::Vector
       mass_times(const dealii::TrilinosWrappers::MPI::Vector &x) const;
 
+      /**
+       * Equilibrium residual of @p u under constraint set @p k: the l2 norm
+       * of C^T f_int(u) (internal forces condensed onto the unconstrained
+       * DoFs, where equilibrium makes them vanish), and the l2 norm of
+       * f_int(u) itself for scale.
+       */
       std::pair<double, double>
       residual_norms(const dealii::TrilinosWrappers::MPI::Vector &u,
                      const unsigned int                           k) const;

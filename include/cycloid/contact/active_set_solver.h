@@ -1,0 +1,166 @@
+#ifndef cycloid_contact_active_set_solver_h
+#define cycloid_contact_active_set_solver_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <cycloid/contact/constraint_formulation.h>
+#include <cycloid/contact/contact_types.h>
+#include <cycloid/elasticity/elasticity.h>
+
+#include <functional>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace cycloid
+{
+  namespace contact
+  {
+    /**
+     * @brief What a load state is solved on, owned by the caller (e.g.
+     * ContactProblem): the discretised contact nodes, the tied nodes, the
+     * fixed DoFs and the load pattern (DoFs moved by beta * g).
+     */
+    template <int dim>
+    struct ContactSystem
+    {
+      /** Slave nodes with their normals and master coefficients. */
+      const std::vector<SlaveNode<dim>> &slaves;
+      /** Tied nodes. */
+      const std::vector<TiedNode<dim>> &ties;
+      /** DoFs held at zero. */
+      const std::vector<dealii::types::global_dof_index> &fixed;
+      /** DoFs moved by beta * g and their g. */
+      const std::map<dealii::types::global_dof_index, double> &load;
+    };
+
+    /**
+     * @brief The primal-dual active set (semi-smooth Newton, Hueber-
+     * Wohlmuth) of one load state; see ContactProblem for the method.
+     *
+     * Per iteration, for the current set: the constraints and the matrix
+     * with two right-hand sides (gaps, unit load), the preconditioner, the
+     * two solves u0, u1 (for a fixed set u = u0 + beta u1), the beta that
+     * meets the load (load control) or the given beta, and the next set
+     * from the nodal reactions and gaps. If a timer is given, these stages
+     * are timed in its sections "contact: constraints and assembly",
+     * "contact: preconditioner", "contact: linear solves", "contact:
+     * active-set update" and, once per state, "contact: residual and
+     * reactions". Every stage is collective, so the sections are entered
+     * on all ranks alike. The environment variable CYCLOID_DEBUG prints
+     * each iteration's times and set sizes to stderr.
+     *
+     * One object per load state: it holds the state's solutions, which
+     * warm-start CG in the next iteration.
+     */
+    template <int dim>
+    class ActiveSetSolver
+    {
+    public:
+      /** Solve on @p problem (its DoFs distributed) for @p system,
+       * constrained as @p formulation says; all held by reference.
+       * @p timer may be null (nothing timed). */
+      ActiveSetSolver(elasticity::LinearElasticity<dim> &problem,
+                      const ConstraintFormulation<dim>  &formulation,
+                      const ContactSettings             &settings,
+                      const ContactSystem<dim>          &system,
+                      dealii::TimerOutput               *timer);
+
+      /**
+       * Iterate from the active set in @p solution until it repeats, for
+       * the generalised reaction @p value (@p load_control) or for beta =
+       * @p value. On return @p solution holds the converged set, the slave
+       * reactions and gaps and the displacement. Throws, naming @p label,
+       * at the iteration limit, on cycling, if no node carries the load
+       * or if the equilibrium residual is above the tolerance.
+       */
+      ContactState
+      solve(const bool            load_control,
+            const double          value,
+            const std::string    &label,
+            ContactSolution<dim> &solution);
+
+    private:
+      /** The constraints of set @p active: fixed DoFs, the load beta * g,
+       * ties and active nodes (their gaps if @p with_gaps). */
+      std::function<void(dealii::AffineConstraints<double> &)>
+      constraint_set(const std::set<unsigned int> &active,
+                     const bool                    with_gaps,
+                     const double                  beta) const;
+
+      /** Constraints, matrix and both right-hand sides for @p active. */
+      void
+      assemble(const std::set<unsigned int> &active);
+
+      /** Build the preconditioner of the new matrix. */
+      void
+      setup_preconditioner(ContactState &state);
+
+      /** u0 (gaps, no load) and u1 (unit load), warm-started from the
+       * previous iteration's. */
+      void
+      solve_linear_systems(ContactState &state);
+
+      /** Nodal forces of u0 and u1, their generalised reactions Q0, Q1
+       * and the beta of the state (the superposition u0 + beta u1). */
+      void
+      superpose(const bool         load_control,
+                const double       value,
+                const std::string &label,
+                ContactState      &state);
+
+      /** The next active set from the reactions and gaps of u0 + beta u1
+       * (gathered over the ranks), and every node's gap in @p gaps. */
+      std::set<unsigned int>
+      next_active_set(const std::set<unsigned int> &active,
+                      const double                  beta,
+                      std::vector<double>          &gaps) const;
+
+      /** Whether @p next repeats @p active (converged); else throws if
+       * @p next was seen before (cycling), records @p active and moves on
+       * to @p next. */
+      bool
+      settle(std::set<unsigned int>              &active,
+             const std::set<unsigned int>        &next,
+             std::vector<std::set<unsigned int>> &history,
+             const unsigned int                   iteration,
+             const std::string                   &label) const;
+
+      /** The state's displacement, equilibrium residual (checked) and
+       * slave reactions. */
+      void
+      finish(const std::string    &label,
+             ContactState         &state,
+             ContactSolution<dim> &solution) const;
+
+      /** Generalised reaction sum_d g_d f_d of the load pattern. */
+      double
+      reaction(const dealii::TrilinosWrappers::MPI::Vector &f) const;
+
+      elasticity::LinearElasticity<dim> &problem;
+      const ConstraintFormulation<dim>  &formulation;
+      const ContactSettings             &settings;
+      const ContactSystem<dim>           system;
+      dealii::TimerOutput *const         timer;
+      const MPI_Comm                     comm;
+      /** Print each iteration to stderr (CYCLOID_DEBUG set, rank 0). */
+      const bool verbose;
+
+      /** The two solutions of the current set and their nodal forces. */
+      dealii::TrilinosWrappers::MPI::Vector u0, u1, f0, f1;
+      /** Generalised reactions of u0 and u1. */
+      double q0 = 0, q1 = 0;
+      /** Wall time of the current iteration's stages (CYCLOID_DEBUG). */
+      dealii::Timer clock;
+      /** Iterations of the current iteration's two solves. */
+      unsigned int n0 = 0, n1 = 0;
+    };
+  } // namespace contact
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,324 @@
+#include <deal.II/base/exceptions.h>
+
+#include <cycloid/contact/active_set_solver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <optional>
+
+namespace cycloid
+{
+  namespace contact
+  {
+    namespace
+    {
+      /** A TimerOutput::Scope if there is a timer, else nothing. */
+      class OptionalScope
+      {
+      public:
+        OptionalScope(dealii::TimerOutput *timer, const std::string &section)
+        {
+          if (timer)
+            scope.emplace(*timer, section);
+        }
+
+      private:
+        std::optional<dealii::TimerOutput::Scope> scope;
+      };
+    } // namespace
+
+
+
+    template <int dim>
+    ActiveSetSolver<dim>::ActiveSetSolver(
+      elasticity::LinearElasticity<dim> &problem,
+      const ConstraintFormulation<dim>  &formulation,
+      const ContactSettings             &settings,
+      const ContactSystem<dim>          &system,
+      dealii::TimerOutput               *timer)
+      : problem(problem)
+      , formulation(formulation)
+      , settings(settings)
+      , system(system)
+      , timer(timer)
+      , comm(problem.dof_handler().get_triangulation().get_communicator())
+      , verbose(std::getenv("CYCLOID_DEBUG") &&
+                dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+    {}
+
+
+
+    template <int dim>
+    ContactState
+    ActiveSetSolver<dim>::solve(const bool            load_control,
+                                const double          value,
+                                const std::string    &label,
+                                ContactSolution<dim> &solution)
+    {
+      ContactState                        state;
+      std::vector<std::set<unsigned int>> history;
+      for (unsigned int it = 0;; ++it)
+        {
+          AssertThrow(it < settings.max_iterations,
+                      dealii::ExcMessage(
+                        "contact: the active set did not settle in " +
+                        std::to_string(settings.max_iterations) +
+                        " iterations (Contact/Maximum active set iterations) "
+                        "at " +
+                        label + "."));
+          clock.restart();
+          assemble(solution.active);
+          const double t_assemble = clock.wall_time();
+          setup_preconditioner(state);
+          const double t_preconditioner = clock.wall_time();
+          solve_linear_systems(state);
+          if (verbose)
+            std::cerr << "  [active set] " << label << ", iteration " << it
+                      << ": constraints+assembly " << t_assemble
+                      << " s, preconditioner " << t_preconditioner - t_assemble
+                      << " s, solves " << clock.wall_time() - t_preconditioner
+                      << " s / " << n0 << " + " << n1 << " it" << std::endl;
+
+          std::set<unsigned int> next;
+          {
+            const OptionalScope scope(timer, "contact: active-set update");
+            superpose(load_control, value, label, state);
+            next = next_active_set(solution.active, state.beta, solution.gaps);
+          }
+          state.iterations = it + 1;
+          if (verbose)
+            std::cerr << "  [active set] " << label << ", iteration " << it
+                      << ": beta " << state.beta << ", Q0 " << q0 << ", Q1 "
+                      << q1 << ", active " << solution.active.size() << " -> "
+                      << next.size() << std::endl;
+          if (settle(solution.active, next, history, it, label))
+            break;
+        }
+      finish(label, state, solution);
+      return state;
+    }
+
+
+
+    template <int dim>
+    std::function<void(dealii::AffineConstraints<double> &)>
+    ActiveSetSolver<dim>::constraint_set(const std::set<unsigned int> &active,
+                                         const bool   with_gaps,
+                                         const double beta) const
+    {
+      return
+        [this, &active, with_gaps, beta](dealii::AffineConstraints<double> &c) {
+          for (const auto d : system.fixed)
+            if (c.can_store_line(d) && !c.is_constrained(d))
+              c.add_line(d);
+          for (const auto &[d, g] : system.load)
+            if (c.can_store_line(d) && !c.is_constrained(d))
+              {
+                c.add_line(d);
+                c.set_inhomogeneity(d, beta * g);
+              }
+          for (const TiedNode<dim> &t : system.ties)
+            for (unsigned int comp = 0; comp < dim; ++comp)
+              {
+                const auto d = t.dofs[comp];
+                if (!c.can_store_line(d) || c.is_constrained(d))
+                  continue;
+                c.add_line(d);
+                for (unsigned int a = 0; a < t.masters[comp].size(); ++a)
+                  c.add_entry(d, t.masters[comp][a], t.weights[comp][a]);
+              }
+          for (const unsigned int i : active)
+            formulation.constrain(c, system.slaves[i], with_gaps);
+        };
+    }
+
+
+
+    template <int dim>
+    void
+    ActiveSetSolver<dim>::assemble(const std::set<unsigned int> &active)
+    {
+      const OptionalScope scope(timer, "contact: constraints and assembly");
+      // Set 0: the gaps, no load; set 1: the unit load, no gaps. Same
+      // structure, so one matrix serves both (superposition).
+      problem.setup_constraints(
+        {constraint_set(active, true, 0.), constraint_set(active, false, 1.)});
+      problem.assemble_sets({});
+    }
+
+
+
+    template <int dim>
+    void
+    ActiveSetSolver<dim>::setup_preconditioner(ContactState &state)
+    {
+      const OptionalScope scope(timer, "contact: preconditioner");
+      if (problem.setup_preconditioner(settings.solver))
+        ++state.preconditioner_setups;
+    }
+
+
+
+    template <int dim>
+    void
+    ActiveSetSolver<dim>::solve_linear_systems(ContactState &state)
+    {
+      const OptionalScope scope(timer, "contact: linear solves");
+      n0 = problem.solve_set(0, settings.solver, settings.solver_tolerance, u0);
+      n1 = problem.solve_set(1, settings.solver, settings.solver_tolerance, u1);
+      state.linear_iterations += n0 + n1;
+    }
+
+
+
+    template <int dim>
+    void
+    ActiveSetSolver<dim>::superpose(const bool         load_control,
+                                    const double       value,
+                                    const std::string &label,
+                                    ContactState      &state)
+    {
+      f0            = problem.effective_forces(u0, true);
+      f1            = problem.effective_forces(u1, false);
+      q0            = reaction(f0);
+      q1            = reaction(f1);
+      state.tangent = q1;
+      if (load_control)
+        {
+          AssertThrow(std::abs(q1) > 0,
+                      dealii::ExcMessage(
+                        "contact: no contact node carries the load at " +
+                        label +
+                        " (the loaded body moves freely for this active set); "
+                        "check the clearances and the search distance."));
+          state.beta = (value - q0) / q1;
+        }
+      else
+        state.beta = value;
+      state.reaction = q0 + state.beta * q1;
+    }
+
+
+
+    template <int dim>
+    std::set<unsigned int>
+    ActiveSetSolver<dim>::next_active_set(const std::set<unsigned int> &active,
+                                          const double                  beta,
+                                          std::vector<double> &gaps) const
+    {
+      // lambda_i + c (-gap_i) > 0 with lambda = 0 off the set and gap = 0
+      // on it: active nodes stay while in compression, inactive ones enter
+      // when they penetrate. Each rank decides its owned nodes.
+      const auto               &slaves = system.slaves;
+      const auto               &owned  = problem.locally_owned_dofs();
+      std::vector<unsigned int> mine;
+      std::vector<double>       my_gaps(slaves.size(), 0.);
+      for (unsigned int i = 0; i < slaves.size(); ++i)
+        {
+          const SlaveNode<dim> &s = slaves[i];
+          if (s.hanging || !owned.is_element(s.dofs[0]))
+            continue;
+          double lambda = 0;
+          for (unsigned int c = 0; c < 2; ++c)
+            lambda += s.normal[c] * (f0[s.dofs[c]] + beta * f1[s.dofs[c]]);
+          const double gap      = formulation.gap(s, u0, u1, beta);
+          my_gaps[i]            = gap;
+          const bool was_active = active.count(i);
+          if ((was_active && lambda > 0) || (!was_active && gap < 0))
+            mine.push_back(i);
+        }
+      std::set<unsigned int> next;
+      for (const auto &part : dealii::Utilities::MPI::all_gather(comm, mine))
+        next.insert(part.begin(), part.end());
+      dealii::Utilities::MPI::sum(my_gaps, comm, gaps);
+      return next;
+    }
+
+
+
+    template <int dim>
+    bool
+    ActiveSetSolver<dim>::settle(std::set<unsigned int>              &active,
+                                 const std::set<unsigned int>        &next,
+                                 std::vector<std::set<unsigned int>> &history,
+                                 const unsigned int                   iteration,
+                                 const std::string &label) const
+    {
+      if (next == active)
+        return true;
+      AssertThrow(
+        std::find(history.begin(), history.end(), next) == history.end(),
+        dealii::ExcMessage("contact: the active set cycles (a set seen before "
+                           "returned at iteration " +
+                           std::to_string(iteration) + ") at " + label + "."));
+      history.push_back(active);
+      active = next;
+      return false;
+    }
+
+
+
+    template <int dim>
+    void
+    ActiveSetSolver<dim>::finish(const std::string    &label,
+                                 ContactState         &state,
+                                 ContactSolution<dim> &solution) const
+    {
+      const OptionalScope scope(timer, "contact: residual and reactions");
+      const auto         &owned = problem.locally_owned_dofs();
+      {
+        dealii::TrilinosWrappers::MPI::Vector a(owned, comm), b(owned, comm);
+        a = u0;
+        b = u1;
+        a.add(state.beta, b);
+        solution.displacement.reinit(owned,
+                                     problem.locally_relevant_dofs(),
+                                     comm);
+        solution.displacement = a;
+      }
+      const auto [r, f] = problem.residual_norms(solution.displacement, 0);
+      state.residual    = f > 0 ? r / f : 0.;
+      AssertThrow(state.residual <= settings.residual_tolerance,
+                  dealii::ExcMessage(
+                    "contact: the converged active set leaves an equilibrium "
+                    "residual of " +
+                    std::to_string(state.residual) + " (relative) at " + label +
+                    ", above " + std::to_string(settings.residual_tolerance) +
+                    "; tighten Solver/Relative tolerance."));
+      const auto         &slaves = system.slaves;
+      std::vector<double> mine(slaves.size() * dim, 0.),
+        all(slaves.size() * dim);
+      for (const unsigned int i : solution.active)
+        if (owned.is_element(slaves[i].dofs[0]))
+          for (unsigned int c = 0; c < dim; ++c)
+            mine[i * dim + c] =
+              f0[slaves[i].dofs[c]] + state.beta * f1[slaves[i].dofs[c]];
+      dealii::Utilities::MPI::sum(mine, comm, all);
+      for (unsigned int i = 0; i < slaves.size(); ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          solution.reactions[i][c] = all[i * dim + c];
+      state.n_active = solution.active.size();
+    }
+
+
+
+    template <int dim>
+    double
+    ActiveSetSolver<dim>::reaction(
+      const dealii::TrilinosWrappers::MPI::Vector &f) const
+    {
+      double q = 0;
+      for (const auto &[d, g] : system.load)
+        if (problem.locally_owned_dofs().is_element(d))
+          q += g * f[d];
+      return dealii::Utilities::MPI::sum(q, comm);
+    }
+
+
+
+    template class ActiveSetSolver<2>;
+    template class ActiveSetSolver<3>;
+  } // namespace contact
+} // namespace cycloid
