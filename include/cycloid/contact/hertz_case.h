@@ -30,8 +30,12 @@ namespace cycloid
     {
       /** Convex counter-body or concave seat. */
       bool   concave = false;
-      double r1 = 10, r2 = 13;
-      double e1 = 30000, nu1 = 0.25, e2 = 29120, nu2 = 0.3;
+      double r1  = 10;    ///< Radius of the cylinder [mm].
+      double r2  = 13;    ///< Radius of the counter-body or seat [mm].
+      double e1  = 30000; ///< Young's modulus of the cylinder [MPa].
+      double nu1 = 0.25;  ///< Poisson's ratio of the cylinder [-].
+      double e2  = 29120; ///< Young's modulus of the counter-body [MPa].
+      double nu2 = 0.3;   ///< Poisson's ratio of the counter-body [-].
       /** Force per unit length [N/mm]. */
       double force = 3200;
       /** Contact discretisation. */
@@ -74,9 +78,9 @@ namespace cycloid
       unsigned int n_active = 0;
       /** Smallest slave-node spacing in the contact zone [mm]. */
       double        h_contact  = 0;
-      unsigned long n_dofs     = 0;
-      unsigned int  iterations = 0;
-      double        wall_s     = 0;
+      unsigned long n_dofs     = 0; ///< Degrees of freedom.
+      unsigned int  iterations = 0; ///< Active-set iterations.
+      double        wall_s     = 0; ///< Wall time of the solve [s].
     };
 
     /** Build, solve and post-process @p c on @p comm (collective). */

@@ -71,9 +71,9 @@ namespace cycloid
     /** What the pin models read from the parameter file. */
     struct PinModelSettings
     {
-      geometry::GeometryParameters   geometry;
-      parameters::MaterialParameters material;
-      parameters::SceneParameters    scene;
+      geometry::GeometryParameters   geometry; ///< Subsection `Geometry`.
+      parameters::MaterialParameters material; ///< Subsection `Material`.
+      parameters::SceneParameters    scene;    ///< Subsection `Scene`.
     };
 
     /** The pin model of the prm's `Scene` (throws naming the entries for a
