@@ -22,6 +22,7 @@ namespace cycloid
       : contact(contact)
       , settings(settings)
       , comm(contact.elasticity().dof_handler().get_communicator())
+      , scheme(create_time_scheme<dim>(settings))
     {
       AssertThrow(
         settings.spectral_radius >= 0 && settings.spectral_radius <= 1,
@@ -124,13 +125,10 @@ namespace cycloid
           const auto old = record.find(d);
           if (old == record.end())
             continue;
-          // Newmark's multipliers are end-of-step forces: trapezoid.
-          // Contact-stabilised reports the step average and
-          // generalized-alpha the force at t_{n+1-alpha_f}, inside the
-          // step: each is the step's force already.
-          const double lambda = settings.scheme == Scheme::newmark ?
-                                  0.5 * (old->second.first + entry.first) :
-                                  entry.first;
+          // The recorded forces are what each scheme reports (end of step,
+          // step average, alpha level); the scheme knows the step's force.
+          const double lambda =
+            scheme->obstacle_force(old->second.first, entry.first);
           if (lambda != 0.)
             w -= lambda * (G(entry.second) - G(old->second.second));
         }
@@ -148,135 +146,23 @@ namespace cycloid
     {
       AssertThrow(dt > 0,
                   dealii::ExcMessage("Transient/Time step must be > 0"));
-      auto       &el    = contact.elasticity_problem();
+      const auto &el    = contact.elasticity();
       const auto &owned = el.locally_owned_dofs();
-      const auto  ghost = [&](const Vector &x) {
-        Vector g(owned, el.locally_relevant_dofs(), comm);
-        g = x;
-        return g;
-      };
-      Vector un(owned, comm), vn(owned, comm), an(owned, comm);
+      Vector      un(owned, comm), vn(owned, comm), an(owned, comm);
       un              = u;
       vn              = v;
       an              = a;
       const double aR = settings.rayleigh_mass,
                    bR = settings.rayleigh_stiffness;
 
-      StepReport   report;
-      unsigned int projection_linear = 0;
-      const double Q_old             = totals.state.reaction;
-      Vector       u_new(owned, comm), v_new(owned, comm), a_new(owned, comm);
-      if (settings.scheme == Scheme::contact_stabilised)
-        {
-          // 1. Predictor u_n + dt v_n projected onto the admissible set in
-          // the mass norm: min |u - u_pred|_M, u admissible.
-          Vector pred(un);
-          pred.add(dt, vn);
-          elasticity::DynamicTerms projection;
-          projection.stiffness = 0.;
-          projection.mass      = 1.;
-          projection.mass_load = ghost(pred);
-          contact.set_dynamic_terms(projection);
-          // The load surface stays where the predictor puts it: beta_n +
-          // dt dbeta/dt, with dbeta/dt read from the velocity of its DoFs
-          // (v = dbeta/dt g there); any other choice would make the
-          // projection move it and corrupt its velocity.
-          double gv = 0, gg = 0;
-          for (const auto &[d, g] : contact.load_pattern())
-            if (owned.is_element(d))
-              {
-                gv += g * vn[d];
-                gg += g * g;
-              }
-          gv                     = dealii::Utilities::MPI::sum(gv, comm);
-          gg                     = dealii::Utilities::MPI::sum(gg, comm);
-          const double beta_pred = beta + (gg > 0 ? dt * gv / gg : 0.);
-          const auto   p =
-            contact.solve_displacement(beta_pred, label + " (projection)");
-          report.iterations += p.iterations;
-          projection_linear = p.linear_iterations;
-          Vector tilde(owned, comm);
-          tilde = contact.displacement();
-
-          // 2. Implicit trapezoidal step from the projected predictor:
-          // (4/dt^2 M + 2/dt C + K) u = M (4/dt^2) u~ - K u_n - 2 C v_n
-          //                              + (2/dt) C u~ + r.
-          elasticity::DynamicTerms terms;
-          terms.mass      = 4. / (dt * dt) + 2. * aR / dt;
-          terms.stiffness = 1. + 2. * bR / dt;
-          Vector wM(tilde), wK(un);
-          wM *= terms.mass;
-          wM.add(-2. * aR, vn);
-          wK *= -1.;
-          wK.add(-2. * bR, vn);
-          wK.add(2. * bR / dt, tilde);
-          terms.mass_load      = ghost(wM);
-          terms.stiffness_load = ghost(wK);
-          contact.set_dynamic_terms(terms);
-          // The load surface's row of this equation is the sum of its
-          // forces at t_n and t_{n+1} (M a_n of the trapezoidal rule keeps
-          // the load of t_n; only the contact forces of t_n are dropped).
-          report.state = load_control ?
-                           contact.solve_load(value + applied, label) :
-                           contact.solve_displacement(value, label);
-          report.state.reaction -= applied;
-          // Likewise the multipliers of the contact rows are the sum of the
-          // contact forces at t_n and t_{n+1} (the projection absorbs the
-          // old one): M (v_{n+1} - v_n) = dt/2 (... + lambda). Report the
-          // step average lambda/2, the force that carries the impulse.
-          contact.scale_reactions(0.5);
-          u_new = contact.displacement();
-          // v_{n+1} = v_n + 2/dt (u_{n+1} - u~); the acceleration is not
-          // part of the scheme's state.
-          v_new = u_new;
-          v_new.add(-1., tilde);
-          v_new.sadd(2. / dt, 1., vn);
-          a_new = 0.;
-        }
-      else
-        {
-          double am = 0, af = 0, b = 0.25, g = 0.5;
-          if (settings.scheme == Scheme::generalized_alpha)
-            {
-              const double rho = settings.spectral_radius;
-              am               = (2. * rho - 1.) / (rho + 1.);
-              af               = rho / (rho + 1.);
-              g                = 0.5 - am + af;
-              b                = 0.25 * (1. - am + af) * (1. - am + af);
-            }
-          // u_{n+1} = uh + b dt^2 a_{n+1}, v_{n+1} = vt + g/(b dt) u_{n+1}.
-          Vector uh(un), vt(vn), vd(vn);
-          uh.add(dt, vn, dt * dt * (0.5 - b), an);
-          const double c = g / (b * dt);
-          vt.add(dt * (1. - g), an, -c, uh);
-          // Damping velocity of the alpha-weighted equation.
-          vd.sadd(af, 1. - af, vt);
-          elasticity::DynamicTerms terms;
-          const double             m = (1. - am) / (b * dt * dt);
-          terms.mass                 = m + (1. - af) * c * aR;
-          terms.stiffness            = (1. - af) * (1. + c * bR);
-          Vector wM(uh), wK(un);
-          wM *= m;
-          wM.add(-am, an, -aR, vd);
-          wK *= -af;
-          wK.add(-bR, vd);
-          terms.mass_load      = ghost(wM);
-          terms.stiffness_load = ghost(wK);
-          contact.set_dynamic_terms(terms);
-          report.state =
-            load_control ?
-              contact.solve_load((1. - af) * value + af * applied, label) :
-              contact.solve_displacement(value, label);
-          u_new = contact.displacement();
-          a_new = u_new;
-          a_new.add(-1., uh);
-          a_new *= 1. / (b * dt * dt);
-          v_new = vn;
-          v_new.add(dt * (1. - g), an, dt * g, a_new);
-        }
-      report.iterations += report.state.iterations;
-      report.state.linear_iterations += projection_linear;
+      const double Q_old = totals.state.reaction;
+      StepOutcome  next  = scheme->step(
+        contact, {un, vn, an, beta, applied, dt, load_control, value, label});
+      // Whatever the scheme set, the next static solve sees A = K again.
       contact.set_dynamic_terms(elasticity::DynamicTerms());
+      StepReport report;
+      report.state      = next.state;
+      report.iterations = next.iterations;
 
       // Energies and work.
       const double beta_new = report.state.beta;
@@ -286,7 +172,7 @@ namespace cycloid
       const auto new_record = contact_record();
       {
         Vector mid(un);
-        mid.add(1., u_new);
+        mid.add(1., next.u);
         mid *= 0.5;
         totals.contact_work += obstacle_work(mid, new_record);
       }
@@ -294,15 +180,15 @@ namespace cycloid
       if (aR > 0 || bR > 0)
         {
           Vector mid(vn);
-          mid.add(1., v_new);
+          mid.add(1., next.v);
           mid *= 0.5;
-          const Vector gm = ghost(mid);
+          const Vector gm = ghosted(contact, mid);
           const auto   e  = el.energies(gm, gm);
           totals.dissipated += dt * (2. * bR * e.first + 2. * aR * e.second);
         }
-      u              = ghost(u_new);
-      v              = ghost(v_new);
-      a              = ghost(a_new);
+      u              = ghosted(contact, next.u);
+      v              = ghosted(contact, next.v);
+      a              = ghosted(contact, next.a);
       const auto e   = el.energies(u, v);
       totals.elastic = e.first;
       totals.kinetic = e.second;

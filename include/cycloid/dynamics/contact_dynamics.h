@@ -4,9 +4,11 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <cycloid/contact/contact_problem.h>
+#include <cycloid/dynamics/time_scheme.h>
 #include <cycloid/dynamics/transient_parameters.h>
 
 #include <iosfwd>
+#include <memory>
 #include <string>
 
 namespace cycloid
@@ -16,7 +18,8 @@ namespace cycloid
     /** Settings of ContactDynamics. */
     struct DynamicsSettings
     {
-      Scheme scheme = Scheme::contact_stabilised; ///< The time scheme.
+      /** The time scheme (`Transient/Scheme`; see create_time_scheme()). */
+      Scheme scheme = Scheme::contact_stabilised;
       /** rho_inf of generalized-alpha [-]. */
       double spectral_radius = 0.8;
       /** Rayleigh damping C = a M + b K: a [1/s]. */
@@ -33,8 +36,8 @@ namespace cycloid
       contact::ContactState state;
       /** Active-set iterations of the step (projection included). */
       unsigned int iterations = 0;
-      double       elastic    = 0; ///< Elastic energy.
-      double       kinetic    = 0; ///< Kinetic energy.
+      double       elastic    = 0; ///< Elastic energy at t_{n+1}.
+      double       kinetic    = 0; ///< Kinetic energy at t_{n+1}.
       /** Work of the load surface (torque or prescribed rotation). */
       double bore_work = 0;
       /** Work of the moving obstacles: -sum lambda [G_{n+1}(u_mid) -
@@ -56,13 +59,15 @@ namespace cycloid
      * @brief Elastodynamics M a + C v + K u = r (contact) on a
      * contact::ContactProblem, one implicit step at a time.
      *
-     * Each step is a contact problem with the effective operator A = s_K K +
-     * s_M M and the history load of the scheme
-     * (elasticity::DynamicTerms); the primal-dual active set of
-     * ContactProblem solves it, warm-started from the previous step, with
-     * the load surface either torque-controlled (two-solve superposition)
-     * or rotation-controlled. The state (u, v, a, beta) and the energy
-     * accounts persist between steps and can be saved and restored
+     * Each step is one or more contact problems with the effective
+     * operator A = s_K K + s_M M and the history load
+     * (elasticity::DynamicTerms) of the TimeScheme that
+     * DynamicsSettings::scheme names (create_time_scheme()); the primal-dual
+     * active set of ContactProblem solves them, warm-started from the
+     * previous step, with the load surface either torque-controlled
+     * (two-solve superposition) or rotation-controlled. What every scheme
+     * shares stays here: the state (u, v, a, beta) and the energy accounts
+     * persist between steps and can be saved and restored
      * (checkpoint/restart on the same number of ranks).
      *
      * Energy balance: E_kin + E_el - W_load - W_contact + D = E_0, with
@@ -140,6 +145,9 @@ namespace cycloid
       contact::ContactProblem<dim> &contact;
       const DynamicsSettings        settings;
       const MPI_Comm                comm;
+      /** The scheme of settings.scheme; it holds no state, so copies of
+       * this object share it. */
+      const std::shared_ptr<const TimeScheme<dim>> scheme;
 
       dealii::TrilinosWrappers::MPI::Vector u, v, a;
       double                                beta = 0, beta_old = 0;
