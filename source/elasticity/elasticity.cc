@@ -137,6 +137,242 @@ namespace cycloid
 
 
 
+    namespace
+    {
+      /**
+       * Everything the cell loop of LinearElasticity::assemble_sets() needs,
+       * built once per assembly so that the loop allocates nothing.
+       */
+      template <int dim>
+      struct AssemblyScratch
+      {
+        /** Size the local objects for @p fe and read the flags of
+         * @p dynamic. */
+        AssemblyScratch(const dealii::Mapping<dim>  &mapping,
+                        const dealii::FESystem<dim> &fe,
+                        const DynamicTerms          &dynamic)
+          : fe_values(mapping,
+                      fe,
+                      dealii::QGauss<dim>(fe.degree + 1),
+                      dealii::update_values | dealii::update_gradients |
+                        dealii::update_JxW_values)
+          , fe_face_values(mapping,
+                           fe,
+                           dealii::QGauss<dim - 1>(fe.degree + 1),
+                           dealii::update_values |
+                             dealii::update_quadrature_points |
+                             dealii::update_JxW_values)
+          , dofs_per_cell(fe.n_dofs_per_cell())
+          , cell_matrix(dofs_per_cell, dofs_per_cell)
+          , cell_rhs(dofs_per_cell)
+          , indices(dofs_per_cell)
+          , u(0)
+          , eps(dofs_per_cell)
+          , div(dofs_per_cell)
+          , t(dim)
+          , has_mass(dynamic.mass != 0.)
+          // (Ghosted vectors: presence, not norm, decides.)
+          , has_mass_load(dynamic.mass_load.size() > 0)
+          , has_stiffness_load(dynamic.stiffness_load.size() > 0)
+          , cell_mass(dofs_per_cell, dofs_per_cell)
+          , cell_load(dofs_per_cell)
+          , cell_w(dofs_per_cell)
+          , comp_of(dofs_per_cell)
+        {
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            comp_of[i] = fe.system_to_component_index(i).first;
+        }
+
+        /** Values, gradients and weights in the cell. */
+        dealii::FEValues<dim> fe_values;
+        /** Values and points on boundary faces (tractions). */
+        dealii::FEFaceValues<dim> fe_face_values;
+        /** DoFs per cell. */
+        const unsigned int dofs_per_cell;
+        /** Local effective operator s_K K + s_M M. */
+        dealii::FullMatrix<double> cell_matrix;
+        /** Local traction load (set 0: plus the history load). */
+        dealii::Vector<double> cell_rhs;
+        /** Copy of cell_rhs for the sets k > 0. */
+        dealii::Vector<double> cell_rhs_k;
+        /** Global DoFs of the cell. */
+        std::vector<dealii::types::global_dof_index> indices;
+        /** Displacement extractor. */
+        const dealii::FEValuesExtractors::Vector u;
+        /** Symmetric gradients of the shape functions at one point. */
+        std::vector<dealii::SymmetricTensor<2, dim>> eps;
+        /** Divergences of the shape functions at one point. */
+        std::vector<double> div;
+        /** Traction at one face point. */
+        dealii::Vector<double> t;
+        /** Whether the operator has a mass part s_M M. */
+        const bool has_mass;
+        /** Whether there is a history load M w_M. */
+        const bool has_mass_load;
+        /** Whether there is a history load K w_K. */
+        const bool has_stiffness_load;
+        /** Local mass matrix M. */
+        dealii::FullMatrix<double> cell_mass;
+        /** Local history load M w_M + K w_K. */
+        dealii::Vector<double> cell_load;
+        /** Local values of w_M or w_K. */
+        dealii::Vector<double> cell_w;
+        /** Component of each local DoF. */
+        std::vector<unsigned int> comp_of;
+      };
+
+
+
+      /** Local stiffness K of @p cell (material from @p materials) into
+       * @p s.cell_matrix, both triangles; reinitialises @p s.fe_values. */
+      template <int dim>
+      void
+      assemble_local_stiffness(
+        const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
+        const std::map<dealii::types::material_id, parameters::ElasticMaterial>
+                             &materials,
+        AssemblyScratch<dim> &s)
+      {
+        const auto it = materials.find(cell->material_id());
+        AssertThrow(it != materials.end(),
+                    dealii::ExcMessage("elasticity: no material for body " +
+                                       std::to_string(cell->material_id())));
+        const auto [lambda, mu] = lame_parameters(it->second);
+
+        const unsigned int dofs_per_cell = s.dofs_per_cell;
+        s.cell_matrix                    = 0;
+        s.fe_values.reinit(cell);
+        for (const unsigned int q : s.fe_values.quadrature_point_indices())
+          {
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              {
+                s.eps[i] = s.fe_values[s.u].symmetric_gradient(i, q);
+                s.div[i] = s.fe_values[s.u].divergence(i, q);
+              }
+            const double w = s.fe_values.JxW(q);
+            // K is symmetric: sum the lower triangle, mirror it below.
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              for (unsigned int j = 0; j <= i; ++j)
+                s.cell_matrix(i, j) += (2 * mu * (s.eps[i] * s.eps[j]) +
+                                        lambda * s.div[i] * s.div[j]) *
+                                       w;
+          }
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
+            s.cell_matrix(i, j) = s.cell_matrix(j, i);
+      }
+
+
+
+      /** History load M w_M + K w_K into @p s.cell_load, then
+       * @p s.cell_matrix becomes s_K K + s_M M (@p dynamic). Needs
+       * @p s.fe_values on the cell, @p s.indices and its density @p rho. */
+      template <int dim>
+      void
+      add_dynamic_terms(const DynamicTerms   &dynamic,
+                        const double          rho,
+                        AssemblyScratch<dim> &s)
+      {
+        const unsigned int dofs_per_cell = s.dofs_per_cell;
+        const auto        &fe_values     = s.fe_values;
+        // K w_K needs the plain K, so it comes before the scaling by s_K.
+        s.cell_load = 0;
+        if (s.has_mass || s.has_mass_load)
+          {
+            s.cell_mass = 0;
+            for (const unsigned int q : fe_values.quadrature_point_indices())
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                  if (s.comp_of[i] == s.comp_of[j])
+                    s.cell_mass(i, j) += rho * fe_values.shape_value(i, q) *
+                                         fe_values.shape_value(j, q) *
+                                         fe_values.JxW(q);
+            if (s.has_mass_load)
+              {
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  s.cell_w(i) = dynamic.mass_load[s.indices[i]];
+                s.cell_mass.vmult_add(s.cell_load, s.cell_w);
+              }
+          }
+        if (s.has_stiffness_load)
+          {
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              s.cell_w(i) = dynamic.stiffness_load[s.indices[i]];
+            s.cell_matrix.vmult_add(s.cell_load, s.cell_w);
+          }
+        if (dynamic.stiffness != 1.)
+          s.cell_matrix *= dynamic.stiffness;
+        if (s.has_mass)
+          s.cell_matrix.add(dynamic.mass, s.cell_mass);
+      }
+
+
+
+      /** Boundary tractions of @p cell into @p s.cell_rhs (reset first). */
+      template <int dim>
+      void
+      assemble_local_tractions(
+        const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
+        const std::map<dealii::types::boundary_id,
+                       const dealii::Function<dim> *>                &tractions,
+        const dealii::FESystem<dim>                                  &fe,
+        AssemblyScratch<dim>                                         &s)
+      {
+        s.cell_rhs = 0;
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              const auto tr = tractions.find(cell->face(f)->boundary_id());
+              if (tr == tractions.end())
+                continue;
+              s.fe_face_values.reinit(cell, f);
+              for (const unsigned int q :
+                   s.fe_face_values.quadrature_point_indices())
+                {
+                  tr->second->vector_value(s.fe_face_values.quadrature_point(q),
+                                           s.t);
+                  for (unsigned int i = 0; i < s.dofs_per_cell; ++i)
+                    {
+                      const unsigned int c =
+                        fe.system_to_component_index(i).first;
+                      s.cell_rhs(i) += s.fe_face_values.shape_value(i, q) *
+                                       s.t(c) * s.fe_face_values.JxW(q);
+                    }
+                }
+            }
+      }
+
+
+
+      /** Add the local objects of @p s to @p matrix and to every right-hand
+       * side in @p rhs, each through its constraint set in @p constraints. */
+      template <int dim>
+      void
+      distribute_local(
+        AssemblyScratch<dim>                                 &s,
+        const std::vector<dealii::AffineConstraints<double>> &constraints,
+        dealii::TrilinosWrappers::SparseMatrix               &matrix,
+        std::vector<dealii::TrilinosWrappers::MPI::Vector>   &rhs)
+      {
+        // Sets k > 0 share the matrix; their inhomogeneities enter the
+        // right-hand side through the local matrix. The history load
+        // belongs to the first set only (superposition u = u_0 + beta u_1).
+        for (unsigned int k = 1; k < constraints.size(); ++k)
+          {
+            s.cell_rhs_k = s.cell_rhs;
+            constraints[k].distribute_local_to_global(s.cell_rhs_k,
+                                                      s.indices,
+                                                      rhs[k],
+                                                      s.cell_matrix);
+          }
+        s.cell_rhs += s.cell_load;
+        constraints[0].distribute_local_to_global(
+          s.cell_matrix, s.cell_rhs, s.indices, matrix, rhs[0]);
+      }
+    } // namespace
+
+
+
     template <int dim>
     void
     LinearElasticity<dim>::assemble_sets(
@@ -146,135 +382,21 @@ namespace cycloid
       system_matrix = 0;
       for (auto &rhs : rhs_sets)
         rhs = 0;
-      const dealii::QGauss<dim>     quadrature(fe.degree + 1);
-      const dealii::QGauss<dim - 1> face_quadrature(fe.degree + 1);
-      dealii::FEValues<dim>         fe_values(*map,
-                                      fe,
-                                      quadrature,
-                                      dealii::update_values |
-                                        dealii::update_gradients |
-                                        dealii::update_JxW_values);
-      dealii::FEFaceValues<dim>     fe_face_values(
-        *map,
-        fe,
-        face_quadrature,
-        dealii::update_values | dealii::update_quadrature_points |
-          dealii::update_JxW_values);
-      const unsigned int         dofs_per_cell = fe.n_dofs_per_cell();
-      dealii::FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
-      dealii::Vector<double>     cell_rhs(dofs_per_cell), cell_rhs_k;
-      std::vector<dealii::types::global_dof_index> indices(dofs_per_cell);
-      const dealii::FEValuesExtractors::Vector     u(0);
-      std::vector<dealii::SymmetricTensor<2, dim>> eps(dofs_per_cell);
-      std::vector<double>                          div(dofs_per_cell);
-      dealii::Vector<double>                       t(dim);
       // Effective operator s_K K + s_M M and history load M w_M + K w_K.
-      const bool has_mass = dynamic.mass != 0.;
-      // (Ghosted vectors: presence, not norm, decides.)
-      const bool has_mass_load      = dynamic.mass_load.size() > 0;
-      const bool has_stiffness_load = dynamic.stiffness_load.size() > 0;
-      dealii::FullMatrix<double> cell_mass(dofs_per_cell, dofs_per_cell);
-      dealii::Vector<double>    cell_load(dofs_per_cell), cell_w(dofs_per_cell);
-      std::vector<unsigned int> comp_of(dofs_per_cell);
-      for (unsigned int i = 0; i < dofs_per_cell; ++i)
-        comp_of[i] = fe.system_to_component_index(i).first;
-
+      AssemblyScratch<dim> scratch(*map, fe, dynamic);
       for (const auto &cell : dofs.active_cell_iterators())
         {
           if (!cell->is_locally_owned())
             continue;
-          const auto it = materials.find(cell->material_id());
-          AssertThrow(it != materials.end(),
-                      dealii::ExcMessage("elasticity: no material for body " +
-                                         std::to_string(cell->material_id())));
-          const auto [lambda, mu] = lame_parameters(it->second);
-
-          cell_matrix = 0;
-          cell_rhs    = 0;
-          fe_values.reinit(cell);
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                {
-                  eps[i] = fe_values[u].symmetric_gradient(i, q);
-                  div[i] = fe_values[u].divergence(i, q);
-                }
-              const double w = fe_values.JxW(q);
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                for (unsigned int j = 0; j <= i; ++j)
-                  cell_matrix(i, j) +=
-                    (2 * mu * (eps[i] * eps[j]) + lambda * div[i] * div[j]) * w;
-            }
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
-              cell_matrix(i, j) = cell_matrix(j, i);
-
-          cell->get_dof_indices(indices);
-          cell_load = 0;
-          if (has_mass || has_mass_load)
-            {
-              const double rho = density(cell->material_id());
-              cell_mass        = 0;
-              for (const unsigned int q : fe_values.quadrature_point_indices())
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  for (unsigned int j = 0; j < dofs_per_cell; ++j)
-                    if (comp_of[i] == comp_of[j])
-                      cell_mass(i, j) += rho * fe_values.shape_value(i, q) *
-                                         fe_values.shape_value(j, q) *
-                                         fe_values.JxW(q);
-              if (has_mass_load)
-                {
-                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                    cell_w(i) = dynamic.mass_load[indices[i]];
-                  cell_mass.vmult_add(cell_load, cell_w);
-                }
-            }
-          if (has_stiffness_load)
-            {
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                cell_w(i) = dynamic.stiffness_load[indices[i]];
-              cell_matrix.vmult_add(cell_load, cell_w);
-            }
-          if (dynamic.stiffness != 1.)
-            cell_matrix *= dynamic.stiffness;
-          if (has_mass)
-            cell_matrix.add(dynamic.mass, cell_mass);
-
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary())
-              {
-                const auto tr = tractions.find(cell->face(f)->boundary_id());
-                if (tr == tractions.end())
-                  continue;
-                fe_face_values.reinit(cell, f);
-                for (const unsigned int q :
-                     fe_face_values.quadrature_point_indices())
-                  {
-                    tr->second->vector_value(fe_face_values.quadrature_point(q),
-                                             t);
-                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                      {
-                        const unsigned int c =
-                          fe.system_to_component_index(i).first;
-                        cell_rhs(i) += fe_face_values.shape_value(i, q) * t(c) *
-                                       fe_face_values.JxW(q);
-                      }
-                  }
-              }
-          // Sets k > 0 share the matrix; their inhomogeneities enter the
-          // right-hand side through the local matrix. The history load
-          // belongs to the first set only (superposition u = u_0 + beta u_1).
-          for (unsigned int k = 1; k < constraint_sets.size(); ++k)
-            {
-              cell_rhs_k = cell_rhs;
-              constraint_sets[k].distribute_local_to_global(cell_rhs_k,
-                                                            indices,
-                                                            rhs_sets[k],
-                                                            cell_matrix);
-            }
-          cell_rhs += cell_load;
-          constraint_sets[0].distribute_local_to_global(
-            cell_matrix, cell_rhs, indices, system_matrix, rhs_sets[0]);
+          assemble_local_stiffness<dim>(cell, materials, scratch);
+          cell->get_dof_indices(scratch.indices);
+          // The density is looked up only where the operator needs it.
+          const double rho = scratch.has_mass || scratch.has_mass_load ?
+                               density(cell->material_id()) :
+                               0.;
+          add_dynamic_terms(dynamic, rho, scratch);
+          assemble_local_tractions<dim>(cell, tractions, fe, scratch);
+          distribute_local(scratch, constraint_sets, system_matrix, rhs_sets);
         }
       system_matrix.compress(dealii::VectorOperation::add);
       for (auto &rhs : rhs_sets)

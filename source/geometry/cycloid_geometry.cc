@@ -192,53 +192,94 @@ namespace cycloid
 
 
 
-    void
-    CycloidGeometry::validate() const
+    namespace
     {
-      using dealii::ExcMessage;
-      const auto positive = [](const double value, const char *name) {
-        AssertThrow(value > 0,
-                    ExcMessage(std::string("Geometry/") + name +
-                               " must be positive, got " +
-                               std::to_string(value) + "."));
-      };
-      positive(prm.pin_radius, "Pin radius");
-      positive(prm.eccentricity, "Eccentricity");
-      positive(prm.tooth_width, "Tooth width");
-      positive(prm.bore_radius, "Bore radius");
-      AssertThrow(prm.shortening_coefficient > 0 &&
-                    prm.shortening_coefficient < 1,
-                  ExcMessage("Geometry/Shortening coefficient K1 must lie in "
-                             "(0, 1), got " +
-                             std::to_string(prm.shortening_coefficient) + "."));
-      AssertThrow(prm.n_teeth + 1 == prm.n_pins,
-                  ExcMessage("Geometry/Number of cycloid teeth must equal "
-                             "Number of pins - 1 (zc = zp - 1), got zp = " +
-                             std::to_string(prm.n_pins) +
-                             ", zc = " + std::to_string(prm.n_teeth) + "."));
-      AssertThrow(small_r > 0,
-                  ExcMessage("Geometry/Pin radius modification makes the "
-                             "generating pin radius rrp + Delta rrp = " +
-                             std::to_string(small_r) + " mm non-positive."));
-      AssertThrow(k_mod > 0 && k_mod < 1,
-                  ExcMessage("Geometry/Pin circle radius modification makes "
-                             "the modified shortening coefficient e zp/(rp + "
-                             "Delta rp) = " +
-                             std::to_string(k_mod) + " leave (0, 1)."));
-
-      // Neighbouring pins must not overlap: chord 2 rp sin(pi/zp) > 2 rrp.
-      const double chord = 2. * rp * std::sin(pi / zp);
-      AssertThrow(2. * prm.pin_radius < chord,
-                  ExcMessage("Geometry/Pin radius: neighbouring pins overlap "
-                             "(2 rrp = " +
-                             std::to_string(2. * prm.pin_radius) +
-                             " mm >= pin spacing 2 rp sin(pi/zp) = " +
-                             std::to_string(chord) + " mm)."));
-
-      // Undercut: the profile's curvature radius passes through zero where
-      // the convex part of the pin-centre curve is sharper than r.
-      const double margin = undercut_margin();
+      /** Throw naming Geometry/@p name unless @p value is positive. */
+      void
+      require_positive(const double value, const char *name)
       {
+        AssertThrow(value > 0,
+                    dealii::ExcMessage(std::string("Geometry/") + name +
+                                       " must be positive, got " +
+                                       std::to_string(value) + "."));
+      }
+
+
+
+      /** Positive pin radius, eccentricity, tooth width and bore radius;
+       * K1 in (0, 1); zc = zp - 1. Throws dealii::ExcMessage. */
+      void
+      check_inputs(const GeometryParameters &prm)
+      {
+        using dealii::ExcMessage;
+        require_positive(prm.pin_radius, "Pin radius");
+        require_positive(prm.eccentricity, "Eccentricity");
+        require_positive(prm.tooth_width, "Tooth width");
+        require_positive(prm.bore_radius, "Bore radius");
+        AssertThrow(prm.shortening_coefficient > 0 &&
+                      prm.shortening_coefficient < 1,
+                    ExcMessage("Geometry/Shortening coefficient K1 must lie in "
+                               "(0, 1), got " +
+                               std::to_string(prm.shortening_coefficient) +
+                               "."));
+        AssertThrow(prm.n_teeth + 1 == prm.n_pins,
+                    ExcMessage("Geometry/Number of cycloid teeth must equal "
+                               "Number of pins - 1 (zc = zp - 1), got zp = " +
+                               std::to_string(prm.n_pins) +
+                               ", zc = " + std::to_string(prm.n_teeth) + "."));
+      }
+
+
+
+      /** The profile modifications keep the generating pin radius
+       * @p small_r = rrp + Delta rrp positive and the modified shortening
+       * coefficient @p k_mod in (0, 1). Throws dealii::ExcMessage. */
+      void
+      check_modifications(const double small_r, const double k_mod)
+      {
+        using dealii::ExcMessage;
+        AssertThrow(small_r > 0,
+                    ExcMessage("Geometry/Pin radius modification makes the "
+                               "generating pin radius rrp + Delta rrp = " +
+                               std::to_string(small_r) + " mm non-positive."));
+        AssertThrow(k_mod > 0 && k_mod < 1,
+                    ExcMessage("Geometry/Pin circle radius modification makes "
+                               "the modified shortening coefficient e zp/(rp + "
+                               "Delta rp) = " +
+                               std::to_string(k_mod) + " leave (0, 1)."));
+      }
+
+
+
+      /** Neighbouring pins (@p zp of them on the circle @p rp) do not
+       * overlap. Throws dealii::ExcMessage. */
+      void
+      check_pin_spacing(const GeometryParameters &prm,
+                        const double              rp,
+                        const unsigned int        zp)
+      {
+        using dealii::ExcMessage;
+        // Neighbouring pins must not overlap: chord 2 rp sin(pi/zp) > 2 rrp.
+        const double chord = 2. * rp * std::sin(pi / zp);
+        AssertThrow(2. * prm.pin_radius < chord,
+                    ExcMessage("Geometry/Pin radius: neighbouring pins overlap "
+                               "(2 rrp = " +
+                               std::to_string(2. * prm.pin_radius) +
+                               " mm >= pin spacing 2 rp sin(pi/zp) = " +
+                               std::to_string(chord) + " mm)."));
+      }
+
+
+
+      /** The profile does not undercut: @p margin is
+       * CycloidGeometry::undercut_margin() for the generating pin radius
+       * @p small_r. Throws dealii::ExcMessage. */
+      void
+      check_undercut(const double margin, const double small_r)
+      {
+        using dealii::ExcMessage;
+        // Undercut: the profile's curvature radius passes through zero where
+        // the convex part of the pin-centre curve is sharper than r.
         std::ostringstream msg;
         msg << "Geometry: the cycloid profile undercuts (its curvature radius "
                "passes through zero): the smallest convex curvature radius of "
@@ -250,10 +291,21 @@ namespace cycloid
         AssertThrow(margin > 0, ExcMessage(msg.str()));
       }
 
-      // The modified disc must not overlap a pin at rest: every pin centre
-      // sweeps the nominal pin-centre curve in the disc frame, so sample one
-      // tooth of it and measure the clearance by a closest-point search.
+
+
+      /** The modified disc @p g does not overlap a pin at rest (pin
+       * circle @p rp, @p zc teeth, ratio @p i_h). Throws dealii::ExcMessage. */
+      void
+      check_rest_clearance(const CycloidGeometry    &g,
+                           const GeometryParameters &prm,
+                           const double              rp,
+                           const unsigned int        zc,
+                           const double              i_h)
       {
+        using dealii::ExcMessage;
+        // The modified disc must not overlap a pin at rest: every pin centre
+        // sweeps the nominal pin-centre curve in the disc frame, so sample one
+        // tooth of it and measure the clearance by a closest-point search.
         const unsigned int n_samples = 720;
         double             worst     = std::numeric_limits<double>::max();
         double             worst_phi = 0;
@@ -263,7 +315,7 @@ namespace cycloid
             const complex q   = rp * std::polar(1., -phi / zc) -
                               prm.eccentricity * std::polar(1., -i_h * phi);
             const double c =
-              signed_distance(Point<2>(q.real(), q.imag())) - prm.pin_radius;
+              g.signed_distance(Point<2>(q.real(), q.imag())) - prm.pin_radius;
             if (c < worst)
               {
                 worst     = c;
@@ -283,39 +335,73 @@ namespace cycloid
         AssertThrow(worst > -1e-7, ExcMessage(msg.str()));
       }
 
-      AssertThrow(prm.housing_thickness > 1.5 * prm.pin_radius,
-                  ExcMessage("Geometry/Housing wall thickness must exceed 1.5 "
-                             "Pin radius so that the grooves leave a wall."));
 
-      // Bore and crank holes must fit inside the root circle.
-      const double root = root_radius();
-      AssertThrow(prm.bore_radius < root,
-                  ExcMessage("Geometry/Bore radius " +
-                             std::to_string(prm.bore_radius) +
-                             " mm does not fit inside the root radius " +
-                             std::to_string(root) + " mm."));
-      if (prm.n_crank_holes > 0)
-        {
-          positive(prm.crank_hole_radius, "Crank hole radius");
-          positive(prm.crank_hole_circle_radius, "Crank hole circle radius");
-          AssertThrow(prm.crank_hole_circle_radius - prm.crank_hole_radius >
-                        prm.bore_radius,
-                      ExcMessage("Geometry/Crank hole radius and Crank hole "
-                                 "circle radius: the crank holes cut into "
-                                 "the bore."));
-          AssertThrow(prm.crank_hole_circle_radius + prm.crank_hole_radius <
-                        root,
-                      ExcMessage("Geometry/Crank hole radius and Crank hole "
-                                 "circle radius: the crank holes cut the "
-                                 "tooth root (root radius " +
-                                 std::to_string(root) + " mm)."));
-          if (prm.n_crank_holes > 1)
-            AssertThrow(prm.crank_hole_radius <
-                          prm.crank_hole_circle_radius *
-                            std::sin(pi / prm.n_crank_holes),
-                        ExcMessage("Geometry/Crank hole radius: neighbouring "
-                                   "crank holes overlap."));
-        }
+
+      /** The housing wall outlasts its grooves. Throws dealii::ExcMessage. */
+      void
+      check_housing(const GeometryParameters &prm)
+      {
+        using dealii::ExcMessage;
+        AssertThrow(prm.housing_thickness > 1.5 * prm.pin_radius,
+                    ExcMessage(
+                      "Geometry/Housing wall thickness must exceed 1.5 "
+                      "Pin radius so that the grooves leave a wall."));
+      }
+
+
+
+      /** Bore and crank holes fit inside the root circle @p root and do
+       * not cut into each other. Throws dealii::ExcMessage. */
+      void
+      check_holes(const GeometryParameters &prm, const double root)
+      {
+        using dealii::ExcMessage;
+        // Bore and crank holes must fit inside the root circle.
+        AssertThrow(prm.bore_radius < root,
+                    ExcMessage("Geometry/Bore radius " +
+                               std::to_string(prm.bore_radius) +
+                               " mm does not fit inside the root radius " +
+                               std::to_string(root) + " mm."));
+        if (prm.n_crank_holes > 0)
+          {
+            require_positive(prm.crank_hole_radius, "Crank hole radius");
+            require_positive(prm.crank_hole_circle_radius,
+                             "Crank hole circle radius");
+            AssertThrow(prm.crank_hole_circle_radius - prm.crank_hole_radius >
+                          prm.bore_radius,
+                        ExcMessage("Geometry/Crank hole radius and Crank hole "
+                                   "circle radius: the crank holes cut into "
+                                   "the bore."));
+            AssertThrow(prm.crank_hole_circle_radius + prm.crank_hole_radius <
+                          root,
+                        ExcMessage("Geometry/Crank hole radius and Crank hole "
+                                   "circle radius: the crank holes cut the "
+                                   "tooth root (root radius " +
+                                   std::to_string(root) + " mm)."));
+            if (prm.n_crank_holes > 1)
+              AssertThrow(prm.crank_hole_radius <
+                            prm.crank_hole_circle_radius *
+                              std::sin(pi / prm.n_crank_holes),
+                          ExcMessage("Geometry/Crank hole radius: neighbouring "
+                                     "crank holes overlap."));
+          }
+      }
+    } // namespace
+
+
+
+    void
+    CycloidGeometry::validate() const
+    {
+      // Cheap parameter checks first, so that the message names the input
+      // before a derived quantity (undercut, clearance) trips over it.
+      check_inputs(prm);
+      check_modifications(small_r, k_mod);
+      check_pin_spacing(prm, rp, zp);
+      check_undercut(undercut_margin(), small_r);
+      check_rest_clearance(*this, prm, rp, zc, i_h);
+      check_housing(prm);
+      check_holes(prm, root_radius());
     }
 
 
