@@ -10,6 +10,7 @@
 
 #include <cycloid/contact/contact_problem.h>
 #include <cycloid/contact/hertz_case.h>
+#include <cycloid/elasticity/support_points.h>
 
 #include <chrono>
 #include <cmath>
@@ -134,14 +135,9 @@ namespace cycloid
                     const dealii::Point<2> &c2,
                     ContactProblem<2>      &problem)
       {
-        const auto                 &el = problem.elasticity();
-        const auto                 &fe = el.finite_element();
-        const dealii::Quadrature<2> nodes(
-          fe.base_element(0).get_unit_support_points());
-        dealii::FEValues<2>                          values(el.mapping(),
-                                   fe,
-                                   nodes,
-                                   dealii::update_quadrature_points);
+        const auto &el     = problem.elasticity();
+        const auto &fe     = el.finite_element();
+        auto        values = elasticity::support_point_values(el);
         std::vector<dealii::types::global_dof_index> indices(
           fe.n_dofs_per_cell());
         std::vector<dealii::types::global_dof_index>      fixed;

@@ -8,6 +8,7 @@
 #include <deal.II/grid/tria_iterator.h>
 
 #include <cycloid/analytic/pair_stiffness.h>
+#include <cycloid/elasticity/support_points.h>
 #include <cycloid/postprocess/report.h>
 #include <cycloid/stage/stage_scene.h>
 
@@ -38,21 +39,6 @@ namespace cycloid
         return comp == 0 ? -(x[1] - centre[1]) :
                comp == 1 ? x[0] - centre[0] :
                            0.;
-      }
-
-      /** FEValues at the support points of @p el's cells (node positions on
-       * the exact mapping). */
-      template <int dim>
-      dealii::FEValues<dim>
-      node_values(const elasticity::LinearElasticity<dim> &el)
-      {
-        const auto                   &fe = el.finite_element();
-        const dealii::Quadrature<dim> nodes(
-          fe.base_element(0).get_unit_support_points());
-        return dealii::FEValues<dim>(el.mapping(),
-                                     fe,
-                                     nodes,
-                                     dealii::update_quadrature_points);
       }
     } // namespace
 
@@ -215,7 +201,7 @@ namespace cycloid
         settings.scene.load_introduction == Scene::LoadIntroduction::bore ?
            ids::bore :
            ids::crank_hole;
-      auto                                         values = node_values(el);
+      auto values = elasticity::support_point_values(el);
       std::vector<dealii::types::global_dof_index> indices(
         fe.n_dofs_per_cell());
       std::vector<dealii::types::global_dof_index>      fixed;
@@ -270,7 +256,7 @@ namespace cycloid
       const auto &el     = contact->elasticity();
       const auto &fe     = el.finite_element();
       const auto &owned  = el.locally_owned_dofs();
-      auto        values = node_values(el);
+      auto        values = elasticity::support_point_values(el);
       std::vector<dealii::types::global_dof_index> indices(
         fe.n_dofs_per_cell());
       rotation.reinit(owned, comm);
