@@ -30,12 +30,12 @@ namespace cycloid
     {
       /** Convex counter-body or concave seat. */
       bool   concave = false;
-      double r1  = 10;    ///< Radius of the cylinder [mm].
-      double r2  = 13;    ///< Radius of the counter-body or seat [mm].
-      double e1  = 30000; ///< Young's modulus of the cylinder [MPa].
-      double nu1 = 0.25;  ///< Poisson's ratio of the cylinder [-].
-      double e2  = 29120; ///< Young's modulus of the counter-body [MPa].
-      double nu2 = 0.3;   ///< Poisson's ratio of the counter-body [-].
+      double r1      = 10;    ///< Radius of the cylinder [mm].
+      double r2      = 13;    ///< Radius of the counter-body or seat [mm].
+      double e1      = 30000; ///< Young's modulus of the cylinder [MPa].
+      double nu1     = 0.25;  ///< Poisson's ratio of the cylinder [-].
+      double e2      = 29120; ///< Young's modulus of the counter-body [MPa].
+      double nu2     = 0.3;   ///< Poisson's ratio of the counter-body [-].
       /** Force per unit length [N/mm]. */
       double force = 3200;
       /** Contact discretisation. */
