@@ -20,6 +20,7 @@ namespace cycloid
       mesh::MeshParameters::declare_parameters(prm);
       contact::ContactParameters::declare_parameters(prm);
       dynamics::TransientParameters::declare_parameters(prm);
+      profile::ProfileParameters::declare_parameters(prm);
     }
 
 
@@ -36,6 +37,7 @@ namespace cycloid
       mesh.parse_parameters(prm);
       contact.parse_parameters(prm);
       transient.parse_parameters(prm);
+      profile.parse_parameters(prm);
       AssertThrow(scene.pin_core_radius < geometry.pin_radius,
                   dealii::ExcMessage("Scene/Pin core radius must be smaller "
                                      "than Geometry/Pin radius."));

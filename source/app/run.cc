@@ -6,6 +6,7 @@
 #include <cycloid/runs/analytic_run.h>
 #include <cycloid/runs/mesh_run.h>
 #include <cycloid/runs/phase_sweep.h>
+#include <cycloid/runs/profile_run.h>
 #include <cycloid/runs/quasi_static.h>
 #include <cycloid/runs/transient.h>
 
@@ -120,6 +121,14 @@ namespace cycloid
           runs::AnalyticRun::Settings{prm.model_settings(),
                                       prm.loading,
                                       prm.run.output_directory},
+          prm,
+          comm);
+      else if (prm.run.mode == parameters::RunParameters::Mode::profile)
+        // The exact curve only: no mesh, no FE.
+        build_and_run<runs::ProfileRun>(
+          runs::ProfileRun::Settings{prm.geometry,
+                                     prm.profile,
+                                     prm.run.output_directory},
           prm,
           comm);
       else if (prm.scene.dimension == 2)

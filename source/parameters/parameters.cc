@@ -235,11 +235,13 @@ namespace cycloid
       prm.declare_entry(
         "Run",
         "analytic",
-        Selection("analytic|mesh|quasi-static|phase-sweep|transient"),
+        Selection("analytic|mesh|quasi-static|phase-sweep|transient|profile"),
         "Run mode: 'analytic' (Hertz-based load distribution, "
         "Analytic subsection), 'mesh' (write the FE mesh), 'quasi-static' "
         "(FE contact at Crank angle), 'phase-sweep' (FE over Number of "
-        "phases), 'transient' (elastodynamics with contact).");
+        "phases), 'transient' (elastodynamics with contact), 'profile' "
+        "(the modified profile of one disc as profile.csv, .dxf and .step "
+        "for CAD, at Profile/Chord tolerance).");
       prm.declare_entry("Output directory",
                         "output",
                         Anything(),
@@ -270,6 +272,8 @@ namespace cycloid
         mode = Mode::quasi_static;
       else if (mode_name == "phase-sweep")
         mode = Mode::phase_sweep;
+      else if (mode_name == "profile")
+        mode = Mode::profile;
       else
         mode = Mode::transient;
     }

@@ -14,6 +14,7 @@
 #include <cycloid/parameters/material.h>
 #include <cycloid/parameters/run.h>
 #include <cycloid/parameters/scene.h>
+#include <cycloid/profile/profile_parameters.h>
 
 #include <string>
 
@@ -41,6 +42,8 @@ namespace cycloid
         contact; ///< Subsections `Contact` and `Solver`.
       /** Subsection Transient. */
       dynamics::TransientParameters transient;
+      /** Subsection Profile (Run = profile). */
+      profile::ProfileParameters profile;
 
       /** Declare every subsection. */
       static void

@@ -21,7 +21,8 @@ namespace cycloid
         mesh,
         quasi_static,
         phase_sweep,
-        transient
+        transient,
+        profile
       };
 
       /** Selected run mode. */
