@@ -12,6 +12,7 @@ CYCLOID_PACKAGES=(
   libdeal.ii-dev libgmsh-dev gmsh
   openmpi-bin libgtest-dev numdiff doxygen
   python3 python3-numpy python3-matplotlib python3-vtk9 python3-h5py
+  python3-ezdxf python3-gmsh
 )
 
 cycloid_install_packages() {
