@@ -1,6 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
 #include <cycloid/app/all_parameters.h>
+#include <cycloid/app/parameter_suggestions.h>
 
 #include <fstream>
 
@@ -54,7 +55,7 @@ namespace cycloid
       }
       dealii::ParameterHandler prm;
       declare_parameters(prm);
-      prm.parse_input(filename);
+      parse_input_explained(prm, filename);
       AllParameters result;
       result.parse_parameters(prm);
       return result;

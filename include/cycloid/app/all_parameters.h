@@ -52,7 +52,8 @@ namespace cycloid
 
       /**
        * Declare, read @p filename (with a clear error if it does not exist
-       * or does not parse) and parse.
+       * or does not parse: a misspelled name gets the closest declared
+       * ones, see parse_input_explained()) and parse.
        */
       static AllParameters
       read(const std::string &filename);
