@@ -30,8 +30,8 @@ namespace
            "  quasi-static  FE contact at one crank angle and torque(s)\n"
            "  phase-sweep   FE contact over the meshing phases\n"
            "  transient     elastodynamics with contact\n"
-           "Outputs go to 'Output directory': stiffness.csv, pin_forces.csv "
-           "(see README.md).\n";
+           "Outputs go to 'Output directory': stiffness.csv, pin_forces.csv, "
+           "parameters.prm (see README.md).\n";
   }
 
 

@@ -42,6 +42,14 @@ namespace cycloid
       /** Subsection Transient. */
       dynamics::TransientParameters transient;
 
+      /**
+       * Every entry with the value this run uses, as a parameter file
+       * (deal.II's short PRM format): read() fills it and the run writes it
+       * to its output directory as `parameters.prm`, so that running on
+       * that file repeats the run. Empty if the set was not made by read().
+       */
+      std::string parameter_file;
+
       /** Declare every subsection. */
       static void
       declare_parameters(dealii::ParameterHandler &prm);
