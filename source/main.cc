@@ -26,6 +26,8 @@ namespace
            "Run modes (set Run = ...):\n"
            "  analytic      Hertz-based load distribution over the pins "
            "(seed or line-contact pair model)\n"
+           "  profile       write the disc profile for CAD: profile.dxf, "
+           "profile.step, profile.csv\n"
            "  mesh          write the FE mesh of the scene\n"
            "  quasi-static  FE contact at one crank angle and torque(s)\n"
            "  phase-sweep   FE contact over the meshing phases\n"
