@@ -15,8 +15,21 @@ namespace cycloid
   {
     namespace
     {
-      /** Whether every rank of @p comm reaches this call within
-       * @p timeout_seconds (every rank then reports an error). */
+      /**
+       * Whether every rank of @p comm reaches this call within
+       * @p timeout_seconds (every rank then reports an error).
+       *
+       * The ranks of a collective error arrive together: they unwind the
+       * same stack from the same collective decision, so a few seconds
+       * cover any skew. A rank that does not arrive is either busy or
+       * blocked in a blocking collective, which an MPI_Ibarrier never
+       * matches (MPI-3: non-blocking and blocking collectives do not
+       * match each other). What would defeat the timeout is a blocking
+       * collective on the failed rank between the throw and this call, in
+       * a destructor during the unwinding: the stage's timers used to
+       * make one, so they run on MPI_COMM_SELF (stage_scene.cc); the
+       * other destructors of the runs only free memory.
+       */
       bool
       every_rank_failed(const MPI_Comm comm, const double timeout_seconds)
       {
