@@ -1,12 +1,12 @@
 // cycloid-contact: the executable. Parses the command line and the
-// parameter file, then hands over to the selected run mode.
-
-#include <deal.II/base/exceptions.h>
+// parameter file, then hands over to the selected run mode; an error is
+// reported once (app/error_report.h).
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <cycloid/app/all_parameters.h>
+#include <cycloid/app/error_report.h>
 #include <cycloid/app/run.h>
 
 #include <iostream>
@@ -26,87 +26,117 @@ namespace
            "Run modes (set Run = ...):\n"
            "  analytic      Hertz-based load distribution over the pins "
            "(seed or line-contact pair model)\n"
+           "  profile       write the disc profile for CAD: profile.dxf, "
+           "profile.step, profile.csv\n"
            "  mesh          write the FE mesh of the scene\n"
            "  quasi-static  FE contact at one crank angle and torque(s)\n"
            "  phase-sweep   FE contact over the meshing phases\n"
            "  transient     elastodynamics with contact\n"
-           "Outputs go to 'Output directory': stiffness.csv, pin_forces.csv "
-           "(see README.md).\n";
+           "Outputs go to 'Output directory': stiffness.csv, pin_forces.csv, "
+           "parameters.prm (see README.md).\n";
+  }
+
+
+
+  /** What the command line asks for. */
+  struct CommandLine
+  {
+    /** The action. */
+    enum class Action
+    {
+      run,
+      help,
+      print_parameters,
+      bad
+    } action = Action::run;
+    /** The parameter file (Action::run). */
+    std::string filename;
+    /** Why the command line is bad (Action::bad). */
+    std::string error;
+  };
+
+
+
+  CommandLine
+  parse_command_line(const int argc, char *argv[])
+  {
+    CommandLine command;
+    for (int i = 1; i < argc; ++i)
+      {
+        const std::string arg = argv[i];
+        if (arg == "--help" || arg == "-h")
+          return {CommandLine::Action::help, "", ""};
+        if (arg == "--print-parameters")
+          return {CommandLine::Action::print_parameters, "", ""};
+        if (!arg.empty() && arg[0] == '-')
+          return {CommandLine::Action::bad,
+                  "",
+                  "unknown option '" + arg + "'."};
+        if (!command.filename.empty())
+          return {CommandLine::Action::bad,
+                  "",
+                  "give one parameter file only."};
+        command.filename = arg;
+      }
+    if (command.filename.empty())
+      return {CommandLine::Action::bad, "", "no parameter file given."};
+    return command;
+  }
+
+
+
+  /** Do what @p command asks; return the exit status (errors throw). */
+  int
+  execute(const CommandLine &command)
+  {
+    const bool root =
+      dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    switch (command.action)
+      {
+        case CommandLine::Action::help:
+          if (root)
+            print_usage(std::cout);
+          return 0;
+          case CommandLine::Action::print_parameters: {
+            dealii::ParameterHandler prm;
+            cycloid::app::AllParameters::declare_parameters(prm);
+            if (root)
+              prm.print_parameters(
+                std::cout,
+                dealii::ParameterHandler::PRM |
+                  dealii::ParameterHandler::KeepDeclarationOrder);
+            return 0;
+          }
+        case CommandLine::Action::bad:
+          if (root)
+            {
+              std::cerr << "Error: " << command.error << '\n';
+              print_usage(std::cerr);
+            }
+          return 2;
+        case CommandLine::Action::run:
+          break;
+      }
+    const auto parameters = cycloid::app::AllParameters::read(command.filename);
+    cycloid::app::run(parameters, MPI_COMM_WORLD);
+    return 0;
   }
 } // namespace
+
+
 
 int
 main(int argc, char *argv[])
 {
+  // MPI lives outside the try block: the error report talks over MPI.
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   try
     {
-      dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-      const bool                               root =
-        dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-
-      std::string filename;
-      for (int i = 1; i < argc; ++i)
-        {
-          const std::string arg = argv[i];
-          if (arg == "--help" || arg == "-h")
-            {
-              if (root)
-                print_usage(std::cout);
-              return 0;
-            }
-          if (arg == "--print-parameters")
-            {
-              dealii::ParameterHandler prm;
-              cycloid::app::AllParameters::declare_parameters(prm);
-              if (root)
-                prm.print_parameters(
-                  std::cout,
-                  dealii::ParameterHandler::PRM |
-                    dealii::ParameterHandler::KeepDeclarationOrder);
-              return 0;
-            }
-          if (!arg.empty() && arg[0] == '-')
-            {
-              if (root)
-                {
-                  std::cerr << "Error: unknown option '" << arg << "'.\n";
-                  print_usage(std::cerr);
-                }
-              return 2;
-            }
-          AssertThrow(filename.empty(),
-                      dealii::ExcMessage("give one parameter file only."));
-          filename = arg;
-        }
-      if (filename.empty())
-        {
-          if (root)
-            {
-              std::cerr << "Error: no parameter file given.\n";
-              print_usage(std::cerr);
-            }
-          return 2;
-        }
-
-      const auto parameters = cycloid::app::AllParameters::read(filename);
-      cycloid::app::run(parameters, MPI_COMM_WORLD);
-    }
-  catch (dealii::ExceptionBase &exc)
-    {
-      std::cerr << "Error: ";
-      exc.print_info(std::cerr);
-      std::cerr << std::endl;
-      return 1;
-    }
-  catch (std::exception &exc)
-    {
-      std::cerr << "Error: " << exc.what() << std::endl;
-      return 1;
+      return execute(parse_command_line(argc, argv));
     }
   catch (...)
     {
-      std::cerr << "Error: unknown exception." << std::endl;
-      return 1;
+      return cycloid::app::report_error(std::current_exception(),
+                                        MPI_COMM_WORLD);
     }
-  return 0;
 }

@@ -8,9 +8,12 @@
 
 #include <cycloid/analytic/stage_model.h>
 #include <cycloid/app/all_parameters.h>
+#include <cycloid/app/parameter_suggestions.h>
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
 #include <sstream>
 
 using namespace cycloid;
@@ -155,4 +158,51 @@ TEST(Parameters, PhaseSweepCoversOneClosedPeriod)
   ASSERT_EQ(a.size(), 5u);
   EXPECT_NEAR(a.back() - a.front(), 0.25, 1e-15);
   EXPECT_NEAR(a.front(), 1. * dealii::numbers::PI / 180., 1e-12);
+}
+
+
+
+TEST(Parameters, ClosestNamesAreSuggested)
+{
+  using D = app::DeclaredParameters;
+  const std::vector<std::string> entries{"Tooth width",
+                                         "Pin radius",
+                                         "Pin radius modification",
+                                         "Pin circle radius modification"};
+  // A transposition is one typo; the case does not count.
+  EXPECT_EQ(D::closest("Tooth widht", entries),
+            std::vector<std::string>{"Tooth width"});
+  EXPECT_EQ(D::closest("pin radius", entries).front(), "Pin radius");
+  EXPECT_EQ(D::closest("Pin radius", entries),
+            (std::vector<std::string>{"Pin radius",
+                                      "Pin radius modification"}));
+  EXPECT_TRUE(D::closest("Xyzzy", entries).empty());
+  EXPECT_EQ(D::closest("Geometri", {"Material", "Geometry", "Loading"}),
+            std::vector<std::string>{"Geometry"});
+}
+
+
+
+TEST(Parameters, MisspelledLinesAreExplained)
+{
+  const std::string file = "test_parameters_misspelled.prm";
+  std::ofstream("test_parameters_misspelled.prm")
+    << "# a comment\n"
+       "subsection Geometry\n"
+       "  set Number of pins = \\\n"
+       "    40\n"
+       "  set Torque = 3\n"
+       "end\n"
+       "set Run = analytc\n";
+  dealii::ParameterHandler prm;
+  app::AllParameters::declare_parameters(prm);
+  const app::DeclaredParameters declared(prm);
+  // Line 3 continues on line 4, which deal.II counts as line 3.
+  EXPECT_EQ(declared.explain_line(file, 3), "");
+  EXPECT_EQ(declared.explain_line(file, 5),
+            "there is no entry 'Torque' in subsection 'Geometry'; 'Torque' "
+            "is declared in subsection 'Loading'");
+  EXPECT_NE(declared.explain_line(file, 7).find("did you mean 'analytic'?"),
+            std::string::npos);
+  std::remove(file.c_str());
 }

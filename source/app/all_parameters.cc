@@ -1,8 +1,10 @@
 #include <deal.II/base/exceptions.h>
 
 #include <cycloid/app/all_parameters.h>
+#include <cycloid/app/parameter_suggestions.h>
 
 #include <fstream>
+#include <sstream>
 
 namespace cycloid
 {
@@ -56,9 +58,23 @@ namespace cycloid
       }
       dealii::ParameterHandler prm;
       declare_parameters(prm);
-      prm.parse_input(filename);
+      parse_input_explained(prm, filename);
       AllParameters result;
       result.parse_parameters(prm);
+
+      // Every entry, not only those the file sets: a default that changes
+      // in a later version does not change what the written file repeats.
+      std::ostringstream text;
+      text << "# The parameters of a cycloid-contact run, read from '"
+           << filename
+           << "': every entry with the value the run used.\n"
+              "# 'cycloid-contact parameters.prm' repeats the run (into "
+              "the Output directory below,\n# relative to where it is "
+              "started).\n";
+      prm.print_parameters(text,
+                           dealii::ParameterHandler::ShortPRM |
+                             dealii::ParameterHandler::KeepDeclarationOrder);
+      result.parameter_file = text.str();
       return result;
     }
   } // namespace app

@@ -11,6 +11,7 @@
 #include <cycloid/runs/transient.h>
 
 #include <filesystem>
+#include <fstream>
 
 namespace cycloid
 {
@@ -41,6 +42,18 @@ namespace cycloid
         return {stage_settings(prm), prm.loading, prm.run.write_solution};
       }
 
+      /** Make the output directory and write `parameters.prm` into it. */
+      void
+      prepare_output_directory(const AllParameters &prm, const MPI_Comm comm)
+      {
+        make_output_directory(prm.run.output_directory, comm);
+        write_parameter_file(prm.run.output_directory,
+                             prm.parameter_file,
+                             comm);
+      }
+
+
+
       /** Build the run (it checks its scene: a scene that cannot be solved
        * leaves no files), make the output directory, run. */
       template <typename Run, typename Settings>
@@ -50,7 +63,7 @@ namespace cycloid
                     const MPI_Comm       comm)
       {
         Run run(settings, comm);
-        make_output_directory(prm.run.output_directory, comm);
+        prepare_output_directory(prm, comm);
         run.run();
       }
 
@@ -64,7 +77,7 @@ namespace cycloid
           {
               case Mode::mesh: {
                 // The directory first: the mesher may write stage.msh.
-                make_output_directory(prm.run.output_directory, comm);
+                prepare_output_directory(prm, comm);
                 runs::MeshRun<dim> run(
                   {prm.mesh_settings(),
                    runs::mesh_request(fe_run_settings(prm),
@@ -109,6 +122,31 @@ namespace cycloid
       AssertThrow(!failed,
                   dealii::ExcMessage("Output directory '" + directory +
                                      "' cannot be created."));
+    }
+
+
+
+    void
+    write_parameter_file(const std::string &directory,
+                         const std::string &text,
+                         const MPI_Comm     comm)
+    {
+      if (text.empty())
+        return;
+      // Rank 0 writes; the others learn whether it could, so that a failure
+      // is an error on every rank (see app/error_report.h).
+      bool written = true;
+      if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          std::ofstream out(directory + "/parameters.prm");
+          out << text;
+          out.close();
+          written = static_cast<bool>(out);
+        }
+      const bool failed = dealii::Utilities::MPI::max(written ? 0 : 1, comm);
+      AssertThrow(!failed,
+                  dealii::ExcMessage("cannot write to Output directory '" +
+                                     directory + "' (parameters.prm)."));
     }
 
 

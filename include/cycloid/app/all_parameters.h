@@ -45,6 +45,14 @@ namespace cycloid
       /** Subsection Profile (Run = profile). */
       profile::ProfileParameters profile;
 
+      /**
+       * Every entry with the value this run uses, as a parameter file
+       * (deal.II's short PRM format): read() fills it and the run writes it
+       * to its output directory as `parameters.prm`, so that running on
+       * that file repeats the run. Empty if the set was not made by read().
+       */
+      std::string parameter_file;
+
       /** Declare every subsection. */
       static void
       declare_parameters(dealii::ParameterHandler &prm);
@@ -55,7 +63,8 @@ namespace cycloid
 
       /**
        * Declare, read @p filename (with a clear error if it does not exist
-       * or does not parse) and parse.
+       * or does not parse: a misspelled name gets the closest declared
+       * ones, see parse_input_explained()) and parse.
        */
       static AllParameters
       read(const std::string &filename);

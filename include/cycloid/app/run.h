@@ -23,6 +23,14 @@ namespace cycloid
      * cannot be made). */
     void
     make_output_directory(const std::string &directory, const MPI_Comm comm);
+
+    /** Write @p text (the run's parameters, AllParameters::parameter_file)
+     * as `parameters.prm` into @p directory on rank 0; collective (every
+     * rank throws if it cannot be written). Nothing if @p text is empty. */
+    void
+    write_parameter_file(const std::string &directory,
+                         const std::string &text,
+                         const MPI_Comm     comm);
   } // namespace app
 } // namespace cycloid
 
