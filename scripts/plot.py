@@ -272,9 +272,9 @@ def pin_forces_polar(run):
         style = DISC_STYLE[int(d) % len(DISC_STYLE)]
         polar.plot(2 * np.pi * pin / zp, fn, ls="-", ms=4, label=label, **style)
         flat.plot(pin, fn, ls="-", ms=4, label=label, **style)
-    polar.set_title("Fn around the pin circle [N]")
+    polar.set_title("Fn around the pin circle [N]", pad=14)
     polar.set_xlabel("pin position 360°·j/zp")
-    polar.set_rlabel_position(100)  # radial tick labels off the loaded zone
+    polar.set_rlabel_position(_quietest_angle(run.pins, rows))
     flat.set_title("Fn per pin")
     flat.set_xlabel("pin j (at 360°·j/zp)")
     flat.set_ylabel("normal force Fn [N]")
@@ -282,6 +282,16 @@ def pin_forces_polar(run):
     fig.suptitle(run.title(f"Pin forces, {run.state_label(step)}"))
     fig.index_state = step
     return fig
+
+
+def _quietest_angle(pins, rows):
+    """Angle [°] of the least loaded pins (sum over discs, smoothed over
+    neighbours): the radial tick labels go there, off the curves."""
+    zp = int(pins["pin"][rows].max()) + 1
+    load = np.zeros(zp)
+    np.add.at(load, pins["pin"][rows].astype(int), pins["Fn_N"][rows])
+    smooth = load + np.roll(load, 1) + np.roll(load, -1)
+    return 360.0 * (int(np.argmin(smooth)) + 0.5) / zp
 
 
 def _per_load(run):
