@@ -112,6 +112,15 @@ def fmt(v, digits=4):
     return f"{v:.{digits - 1}e}"
 
 
+def _number(text):
+    """A prm value for a title: ParameterHandler may print 0.3 as
+    0.29999999999999999, so numbers are shown with fmt()."""
+    try:
+        return fmt(float(text))
+    except ValueError:
+        return text
+
+
 class Run:
     """The files of one output directory and what the figures share: the
     load groups (torques, or rotations under rotation control), the crank
@@ -204,7 +213,7 @@ class Run:
                                 ("Pin circle radius modification", "Δrp", " mm"),
                                 ("Pin radius modification", "Δrrp", " mm")):
             if "Geometry/" + key in p:
-                geometry.append(f"{name} = {p['Geometry/' + key]}{unit}")
+                geometry.append(f"{name} = {_number(p['Geometry/' + key])}{unit}")
         parts.append(", ".join(g for g in geometry if g))
         return parts
 
