@@ -294,13 +294,20 @@ def pin_forces_polar(run):
 
 
 def _quietest_angle(pins, rows):
-    """Angle [°] of the least loaded pins (sum over discs, smoothed over
-    neighbours): the radial tick labels go there, off the curves."""
+    """Angle [°] in the middle of the widest zone of unloaded pins (all
+    discs together): the radial tick labels go there, off the curves."""
     zp = int(pins["pin"][rows].max()) + 1
     load = np.zeros(zp)
     np.add.at(load, pins["pin"][rows].astype(int), pins["Fn_N"][rows])
+    loaded = np.flatnonzero(load > 0.05 * load.max()) if load.max() > 0 else []
+    if len(loaded) == 0:
+        return 22.5
+    j = np.arange(zp)[:, None]
+    gap = np.abs(j - loaded[None, :])
+    distance = np.minimum(gap, zp - gap).min(axis=1)  # to the nearest loaded pin
     smooth = load + np.roll(load, 1) + np.roll(load, -1)
-    return 360.0 * (int(np.argmin(smooth)) + 0.5) / zp
+    best = np.lexsort((smooth, -distance))[0]  # farthest; of those, least loaded
+    return 360.0 * int(best) / zp
 
 
 def _per_load(run):
