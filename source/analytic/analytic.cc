@@ -6,6 +6,7 @@
 #include <cycloid/analytic/load_distribution.h>
 #include <cycloid/analytic/pair_stiffness.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -60,6 +61,71 @@ namespace cycloid
                               rho,
                               material.disc.plane_strain_modulus(),
                               rigid ? 0. : material.pin.plane_strain_modulus());
+    }
+
+
+
+    namespace
+    {
+      /** Tresca stress / p0 on the axis of Hertz's line contact at depth
+       * t = z / a (plane strain, Poisson's ratio @p nu). */
+      double
+      axis_tresca_ratio(const double t, const double nu)
+      {
+        const double root    = std::sqrt(1. + t * t);
+        const double sigma_x = -((1. + 2. * t * t) / root - 2. * t);
+        const double sigma_z = -1. / root;
+        const double sigma_y = nu * (sigma_x + sigma_z);
+        const auto [lo, hi]  = std::minmax({sigma_x, sigma_y, sigma_z});
+        return (hi - lo) / 2.;
+      }
+    } // namespace
+
+
+
+    SubsurfaceShear
+    hertz_subsurface_shear(const double poisson)
+    {
+      // A scan brackets the maximum (the Tresca stress may have a kink
+      // where the middle principal stress changes), golden sections refine
+      // it.
+      const unsigned int n     = 400;
+      const double       t_max = 4.;
+      unsigned int       best  = 0;
+      for (unsigned int i = 1; i <= n; ++i)
+        if (axis_tresca_ratio(t_max * i / n, poisson) >
+            axis_tresca_ratio(t_max * best / n, poisson))
+          best = i;
+      double       lo = t_max * (best > 0 ? best - 1 : 0) / n;
+      double       hi = t_max * std::min(best + 1, n) / n;
+      const double g  = (std::sqrt(5.) - 1.) / 2.;
+      while (hi - lo > 1e-12)
+        {
+          const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+          if (axis_tresca_ratio(a, poisson) > axis_tresca_ratio(b, poisson))
+            hi = b;
+          else
+            lo = a;
+        }
+      const double t = (lo + hi) / 2.;
+      return {axis_tresca_ratio(t, poisson), t};
+    }
+
+
+
+    void
+    set_hertz_stresses(results::PinState &pin,
+                       const double       tooth_width,
+                       const double       poisson)
+    {
+      const double a = pin.hertz_halfwidth;
+      if (pin.fn <= 0 || a <= 0)
+        return;
+      pin.hertz_pressure =
+        2. * pin.fn / (dealii::numbers::PI * a * tooth_width);
+      const SubsurfaceShear shear = hertz_subsurface_shear(poisson);
+      pin.max_shear_stress        = shear.stress_ratio * pin.hertz_pressure;
+      pin.max_shear_depth         = shear.depth_ratio * a;
     }
 
 
@@ -354,6 +420,46 @@ namespace cycloid
 
 
 
+    namespace
+    {
+      /** Take-up: the smallest rotation that closes a clearance on the
+       * loaded side (arm of the sign @p sign) [rad, unsigned]. */
+      double
+      takeup_rotation(const std::vector<PinLoad> &pins, const double sign)
+      {
+        double takeup = std::numeric_limits<double>::max();
+        for (const PinLoad &p : pins)
+          if (sign * p.contact.arm > 1e-9)
+            takeup = std::min(takeup,
+                              std::max(p.contact.clearance, 0.) /
+                                (sign * p.contact.arm));
+        AssertThrow(takeup < std::numeric_limits<double>::max(),
+                    dealii::ExcMessage("load distribution: no pin can carry "
+                                       "a torque of this sign."));
+        return takeup;
+      }
+    } // namespace
+
+
+
+    LoadState
+    LoadDistribution::zero_torque_limit(const std::vector<PinLoad> &pins,
+                                        const int                   side) const
+    {
+      LoadState state;
+      state.pins     = pins;
+      state.torque   = 0;
+      state.takeup   = side * takeup_rotation(pins, side);
+      state.rotation = state.takeup;
+      double slope   = 0;
+      state.reaction_torque =
+        torque_at(state.rotation, state.pins, slope) * 1e-3;
+      state.k_tangent = slope * 1e-3;
+      return state;
+    }
+
+
+
     LoadState
     LoadDistribution::solve(const std::vector<PinLoad> &pins_in,
                             const double                torque,
@@ -366,18 +472,8 @@ namespace cycloid
       const double sign   = torque >= 0 ? 1. : -1.;
       double       slope  = 0;
 
-      // Take-up: the smallest rotation that closes a clearance on the
-      // loaded side (arm of the torque's sign).
-      double takeup = std::numeric_limits<double>::max();
-      for (const PinLoad &p : state.pins)
-        if (sign * p.contact.arm > 1e-9)
-          takeup = std::min(takeup,
-                            std::max(p.contact.clearance, 0.) /
-                              (sign * p.contact.arm));
-      AssertThrow(takeup < std::numeric_limits<double>::max(),
-                  dealii::ExcMessage("load distribution: no pin can carry a "
-                                     "torque of this sign."));
-      state.takeup = sign * takeup;
+      const double takeup = takeup_rotation(state.pins, sign);
+      state.takeup        = sign * takeup;
 
       if (torque == 0)
         {
@@ -427,7 +523,11 @@ namespace cycloid
           double next = (dg > 0) ? x - r / dg : 0.5 * (lo + hi);
           if (!(next > lo && next < hi))
             next = 0.5 * (lo + hi);
-          if (hi - lo <= 1e-16 * std::abs(hi))
+          // Stop where the rotation cannot resolve the torque any more: at
+          // a tiny torque after a take-up, beta = takeup + a tiny excess, and
+          // the approach beta arm - clearance cancels all but a few digits.
+          if (hi - lo <= 1e-16 * std::abs(hi) ||
+              std::abs(next - x) <= 4e-16 * std::abs(x))
             break;
           x = next;
         }

@@ -111,6 +111,10 @@ namespace cycloid
                                                      prm.material,
                                                      prm.scene);
           r.contact_halfwidth = r.hertz_halfwidth;
+          set_hertz_stresses(r,
+                             prm.geometry.tooth_width,
+                             prm.material.disc.poissons_ratio);
+          r.max_pressure = r.hertz_pressure;
           s.pins.push_back(r);
         }
       return s;

@@ -8,8 +8,10 @@
 #include <cycloid/parameters/run.h>
 #include <cycloid/parameters/scene.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <string>
 
 namespace cycloid
 {
@@ -123,6 +125,25 @@ namespace cycloid
                           "Number of crank angles of a phase sweep over one "
                           "mesh period 360/zp degrees, both ends included "
                           "[-]; 1 solves only at Crank angle.");
+        prm.declare_entry("Rated torque",
+                          "1000",
+                          Double(1e-6, 1e9),
+                          "Rated output torque of the catalogue torque cycle "
+                          "[N m] (the reducer's catalogue value; > 0).");
+        prm.declare_entry("Torque cycle",
+                          "false",
+                          Bool(),
+                          "Solve the catalogue cycle 0 -> +Rated -> -Rated -> "
+                          "0 instead of the Torque list (analytic, "
+                          "quasi-static and phase-sweep runs), and write "
+                          "torsion_curve.csv and rigidity.csv.");
+        prm.declare_entry("Torque cycle steps",
+                          "40",
+                          Integer(4, 100000),
+                          "Steps of the torque cycle, a multiple of 4 (one "
+                          "quarter per branch) [-]; the +-3 % and +-50 % "
+                          "states the catalogue figures read are added where "
+                          "the steps miss them.");
       }
       prm.leave_subsection();
     }
@@ -140,12 +161,66 @@ namespace cycloid
         rotation_control = prm.get("Control") == "rotation";
         rotations_deg    = dealii::Utilities::string_to_double(
           dealii::Utilities::split_string_list(prm.get("Rotation")));
-        n_phases = prm.get_integer("Number of phases");
+        n_phases           = prm.get_integer("Number of phases");
+        rated_torque       = prm.get_double("Rated torque");
+        torque_cycle       = prm.get_bool("Torque cycle");
+        torque_cycle_steps = prm.get_integer("Torque cycle steps");
       }
       prm.leave_subsection();
       AssertThrow(!torques.empty(),
                   dealii::ExcMessage("Loading/Torque: give at least one "
                                      "torque."));
+      AssertThrow(torque_cycle_steps % 4 == 0,
+                  dealii::ExcMessage(
+                    "Loading/Torque cycle steps = " +
+                    std::to_string(torque_cycle_steps) +
+                    " is not a multiple of 4 (one quarter per branch of the "
+                    "cycle 0 -> +Rated -> 0 -> -Rated -> 0)."));
+      AssertThrow(!(torque_cycle && rotation_control),
+                  dealii::ExcMessage(
+                    "Loading/Torque cycle = true needs Loading/Control = "
+                    "torque: the catalogue cycle prescribes torques."));
+    }
+
+
+
+    std::vector<double>
+    LoadingParameters::cycle_torques() const
+    {
+      // One branch 0 -> 1 as fractions of the rated torque: the equal
+      // steps and the catalogue's reading points.
+      const unsigned int  q = torque_cycle_steps / 4;
+      std::vector<double> branch{0., lost_motion_torque, 0.5};
+      for (unsigned int i = 1; i <= q; ++i)
+        branch.push_back(double(i) / q);
+      std::sort(branch.begin(), branch.end());
+      branch.erase(std::unique(branch.begin(),
+                               branch.end(),
+                               [](const double a, const double b) {
+                                 return std::abs(a - b) < 1e-12;
+                               }),
+                   branch.end());
+      std::vector<double> loads;
+      for (const double sign : {1., -1.})
+        {
+          for (const double f : branch) // up
+            loads.push_back(sign * f * rated_torque);
+          for (auto f = std::next(branch.rbegin()); f != branch.rend(); ++f)
+            loads.push_back(sign * *f * rated_torque); // back down to zero
+        }
+      return loads;
+    }
+
+
+
+    int
+    LoadingParameters::zero_side(const std::vector<double> &loads,
+                                 const unsigned int         i)
+    {
+      const double towards = (i > 0 && loads[i - 1] != 0) ? loads[i - 1] :
+                             i + 1 < loads.size()         ? loads[i + 1] :
+                                                            1.;
+      return towards >= 0 ? 1 : -1;
     }
 
 

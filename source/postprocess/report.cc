@@ -3,6 +3,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <cycloid/parameters/loading.h>
 #include <cycloid/postprocess/report.h>
 
 #include <algorithm>
@@ -23,7 +24,8 @@ namespace cycloid
              "K_tangent_Nm_per_rad,pins_in_contact,active_set_iterations,dofs,"
              "wall_s,K_secant_Nm_per_arcmin,K_tangent_Nm_per_arcmin,"
              "takeup_rad,K_secant_elastic_Nm_per_rad,reaction_torque_Nm,"
-             "max_pin_force_N,linear_iterations,peak_memory_MB";
+             "max_pin_force_N,linear_iterations,peak_memory_MB,"
+             "transmission_error_arcsec";
     }
 
 
@@ -33,7 +35,9 @@ namespace cycloid
     {
       return "step,crank_deg,disc,pin,Fx_N,Fy_N,Fn_N,arm_mm,clearance_um,"
              "phase_deg,approach_um,pair_stiffness_N_per_mm,contact_x_mm,"
-             "contact_y_mm,contact_halfwidth_um,hertz_halfwidth_um";
+             "contact_y_mm,contact_halfwidth_um,hertz_halfwidth_um,"
+             "max_contact_pressure_MPa,hertz_pressure_MPa,"
+             "max_shear_stress_MPa,max_shear_depth_um";
     }
 
 
@@ -46,6 +50,25 @@ namespace cycloid
              "bore_work_J,contact_work_J,dissipated_J,balance_error_J,"
              "relative_balance_error,max_penetration_um,wall_s,"
              "angular_momentum_Nms";
+    }
+
+
+
+    std::string
+    Report::torsion_curve_header()
+    {
+      return "torque_Nm,rotation_rad,rotation_arcmin,crank_deg,step,"
+             "takeup_rad";
+    }
+
+
+
+    std::string
+    Report::rigidity_header()
+    {
+      return "torsional_rigidity_Nm_per_arcmin,lost_motion_arcmin,"
+             "backlash_arcmin,rated_torque_Nm,crank_deg,"
+             "lost_motion_clearance_arcmin,lost_motion_elastic_arcmin";
     }
 
 
@@ -163,7 +186,8 @@ namespace cycloid
                 << s.k_tangent * u::rad_per_arcmin << ',' << s.takeup << ','
                 << s.k_secant_elastic() << ',' << s.reaction_torque << ','
                 << s.max_pin_force() << ',' << s.linear_iterations << ','
-                << s.peak_memory_MB << '\n';
+                << s.peak_memory_MB << ',' << s.rotation * u::arcsec_per_rad
+                << '\n';
       // (+ 0. turns a negative zero into 0 in the CSV.)
       for (const results::PinState &p : s.pins)
         pin_forces << s.step << ',' << crank_deg << ',' << p.disc << ','
@@ -173,7 +197,9 @@ namespace cycloid
                    << p.approach * u::um_per_mm << ',' << p.pair_stiffness
                    << ',' << p.contact_point[0] << ',' << p.contact_point[1]
                    << ',' << p.contact_halfwidth * u::um_per_mm << ','
-                   << p.hertz_halfwidth * u::um_per_mm << '\n';
+                   << p.hertz_halfwidth * u::um_per_mm << ',' << p.max_pressure
+                   << ',' << p.hertz_pressure << ',' << p.max_shear_stress
+                   << ',' << p.max_shear_depth * u::um_per_mm << '\n';
       stiffness.flush();
       pin_forces.flush();
 
@@ -182,12 +208,23 @@ namespace cycloid
                              [&](const Series &x) { return x.load == load; });
       if (it == series.end())
         {
-          series.push_back(Series{load, {}, {}, {}});
+          series.push_back(Series{load, {}, {}, {}, {}});
           it = std::prev(series.end());
         }
-      it->crank.push_back(s.crank);
-      it->k_tangent.push_back(s.k_tangent);
-      it->k_secant.push_back(s.k_secant());
+      // A load met again at the same crank angle (a torque cycle passes
+      // each torque twice) adds no point to the series over the period.
+      if (it->crank.empty() || it->crank.back() != s.crank)
+        {
+          it->crank.push_back(s.crank);
+          it->k_tangent.push_back(s.k_tangent);
+          it->k_secant.push_back(s.k_secant());
+          it->rotation.push_back(s.rotation);
+        }
+      if (options.torque_cycle)
+        cycle.push_back({s.crank, s.torque, s.rotation, s.takeup});
+      for (const results::PinState &p : s.pins)
+        if (p.fn > peak.pin.fn)
+          peak = {s.step, s.crank, s.torque, p};
     }
 
 
@@ -219,9 +256,102 @@ namespace cycloid
                 << s.k_tangent << " N m/rad ("
                 << s.k_tangent * u::rad_per_arcmin << " N m/arcmin), pins "
                 << s.pins_in_contact() << ", iterations " << s.iterations;
+      const auto most = std::max_element(s.pins.begin(),
+                                         s.pins.end(),
+                                         [](const results::PinState &a,
+                                            const results::PinState &b) {
+                                           return a.fn < b.fn;
+                                         });
+      if (most != s.pins.end() && most->fn > 0)
+        std::cout << ", max Fn " << most->fn << " N (disc " << most->disc
+                  << " pin " << most->pin << ", p " << most->max_pressure
+                  << " MPa)";
       if (s.dofs > 0)
         std::cout << ", dofs " << s.dofs;
       std::cout << ", " << s.wall_s << " s" << std::endl;
+    }
+
+
+
+    void
+    Report::write_fluctuation() const
+    {
+      std::ofstream out(options.directory + "/fluctuation.csv");
+      out << (options.rotation_control ? "rotation_rad" : "torque_Nm")
+          << ",n_phases,K_tangent_mean_Nm_per_rad,"
+             "K_tangent_min_Nm_per_rad,K_tangent_max_Nm_per_rad,"
+             "K_tangent_fluctuation,K_secant_mean_Nm_per_rad,"
+             "K_secant_fluctuation,K_tangent_period_closure,"
+             "transmission_error_mean_arcsec,transmission_error_pp_arcsec\n"
+          << std::setprecision(12);
+      for (const Series &x : series)
+        {
+          const Statistics kt(x.k_tangent), ks(x.k_secant), te(x.rotation);
+          // The first and last phase are one mesh period apart: their
+          // ratio shows how far the discretisation is from periodic.
+          const double closure = x.k_tangent.back() / x.k_tangent.front() - 1;
+          // Transmission error: the loaded output rotation's deviation from
+          // the kinematic one, which is beta itself.
+          const double te_mean = te.mean * u::arcsec_per_rad,
+                       te_pp   = (te.max - te.min) * u::arcsec_per_rad;
+          out << x.load << ',' << x.crank.size() << ',' << kt.mean << ','
+              << kt.min << ',' << kt.max << ',' << kt.fluctuation << ','
+              << ks.mean << ',' << ks.fluctuation << ',' << closure << ','
+              << te_mean << ',' << te_pp << '\n';
+          std::cout << "  "
+                    << (options.rotation_control ? "rotation " : "torque ")
+                    << x.load << (options.rotation_control ? " rad" : " N m")
+                    << ": K_tangent over the period mean " << kt.mean
+                    << ", min " << kt.min << ", max " << kt.max
+                    << " N m/rad; fluctuation (max-min)/mean " << kt.fluctuation
+                    << "; first vs last phase " << closure
+                    << "; transmission error mean " << te_mean
+                    << " arcsec, peak-to-peak " << te_pp << " arcsec"
+                    << std::endl;
+        }
+    }
+
+
+
+    void
+    Report::write_torque_cycle() const
+    {
+      using Loading = parameters::LoadingParameters;
+      std::ofstream curve(options.directory + "/torsion_curve.csv");
+      std::ofstream rigidity(options.directory + "/rigidity.csv");
+      curve << torsion_curve_header() << '\n' << std::setprecision(12);
+      rigidity << rigidity_header() << '\n' << std::setprecision(12);
+      std::vector<TorsionPoint> one; // the states of one crank angle
+      for (unsigned int i = 0; i < cycle.size(); ++i)
+        {
+          const TorsionPoint &p = cycle[i];
+          curve << p.torque << ',' << p.rotation << ','
+                << p.rotation * u::arcmin_per_rad << ','
+                << p.crank * u::deg_per_rad << ',' << i << ',' << p.takeup
+                << '\n';
+          one.push_back(p);
+          if (i + 1 < cycle.size() && cycle[i + 1].crank == p.crank)
+            continue;
+          const CatalogueFigures c =
+            catalogue_figures(one,
+                              options.rated_torque,
+                              Loading::lost_motion_torque);
+          rigidity << c.rigidity_Nm_per_arcmin << ',' << c.lost_motion_arcmin
+                   << ',' << c.backlash_arcmin << ',' << c.rated_torque << ','
+                   << c.crank * u::deg_per_rad << ','
+                   << c.lost_motion_clearance_arcmin << ','
+                   << c.lost_motion_elastic_arcmin << '\n';
+          std::cout << "  catalogue figures of the cycloid-pin stage alone "
+                       "(no bearings or shafts), crank "
+                    << c.crank * u::deg_per_rad << " deg, rated torque "
+                    << c.rated_torque << " N m: torsional rigidity "
+                    << c.rigidity_Nm_per_arcmin << " N m/arcmin, lost motion "
+                    << c.lost_motion_arcmin << " arcmin (clearance "
+                    << c.lost_motion_clearance_arcmin << ", elastic "
+                    << c.lost_motion_elastic_arcmin << "), backlash "
+                    << c.backlash_arcmin << " arcmin" << std::endl;
+          one.clear();
+        }
     }
 
 
@@ -234,39 +364,24 @@ namespace cycloid
       std::string written = "stiffness.csv, pin_forces.csv";
       if (options.energy)
         written += ", energy.csv";
-      const bool sweep = options.fluctuation && !series.empty() &&
-                         series.front().crank.size() > 1;
-      if (sweep)
+      if (options.fluctuation && !series.empty() &&
+          series.front().crank.size() > 1)
         {
+          write_fluctuation();
           written += ", fluctuation.csv";
-          std::ofstream out(options.directory + "/fluctuation.csv");
-          out << (options.rotation_control ? "rotation_rad" : "torque_Nm")
-              << ",n_phases,K_tangent_mean_Nm_per_rad,"
-                 "K_tangent_min_Nm_per_rad,K_tangent_max_Nm_per_rad,"
-                 "K_tangent_fluctuation,K_secant_mean_Nm_per_rad,"
-                 "K_secant_fluctuation,K_tangent_period_closure\n"
-              << std::setprecision(12);
-          for (const Series &x : series)
-            {
-              const Statistics kt(x.k_tangent), ks(x.k_secant);
-              // The first and last phase are one mesh period apart: their
-              // ratio shows how far the discretisation is from periodic.
-              const double closure =
-                x.k_tangent.back() / x.k_tangent.front() - 1;
-              out << x.load << ',' << x.crank.size() << ',' << kt.mean << ','
-                  << kt.min << ',' << kt.max << ',' << kt.fluctuation << ','
-                  << ks.mean << ',' << ks.fluctuation << ',' << closure << '\n';
-              std::cout << "  "
-                        << (options.rotation_control ? "rotation " : "torque ")
-                        << x.load
-                        << (options.rotation_control ? " rad" : " N m")
-                        << ": K_tangent over the period mean " << kt.mean
-                        << ", min " << kt.min << ", max " << kt.max
-                        << " N m/rad; fluctuation (max-min)/mean "
-                        << kt.fluctuation << "; first vs last phase " << closure
-                        << std::endl;
-            }
         }
+      if (options.torque_cycle && !cycle.empty())
+        {
+          write_torque_cycle();
+          written += ", torsion_curve.csv, rigidity.csv";
+        }
+      if (peak.pin.fn > 0)
+        std::cout << "  most loaded pin: disc " << peak.pin.disc << ", pin "
+                  << peak.pin.pin << ", Fn " << peak.pin.fn
+                  << " N, peak contact pressure " << peak.pin.max_pressure
+                  << " MPa (state " << peak.step + 1 << ", crank "
+                  << peak.crank * u::deg_per_rad << " deg, torque "
+                  << peak.torque << " N m)" << std::endl;
       std::cout << "  results in " << options.directory << "/: " << written
                 << std::endl;
     }

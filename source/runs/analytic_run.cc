@@ -31,6 +31,31 @@ namespace cycloid
 
 
 
+    namespace
+    {
+      /**
+       * Whether the console shows the state of crank angle @p k of @p n_k
+       * and torque @p t of @p n_t: all of a short run; of a long one, every
+       * torque at about ten crank angles including the first and last, so
+       * every torque is seen while the run goes (a torque cycle: about
+       * twenty of its states).
+       */
+      bool
+      print_state(const unsigned int k,
+                  const unsigned int n_k,
+                  const unsigned int t,
+                  const unsigned int n_t)
+      {
+        if (n_k * n_t <= 20)
+          return true;
+        if (n_t > 20)
+          return t % (n_t / 20) == 0 || t + 1 == n_t;
+        return k % std::max(1u, n_k / 10) == 0 || k + 1 == n_k;
+      }
+    } // namespace
+
+
+
     AnalyticRun::AnalyticRun(const Settings &settings, const MPI_Comm comm)
       : settings(settings)
       , comm(comm)
@@ -43,7 +68,9 @@ namespace cycloid
     AnalyticRun::run()
     {
       postprocess::Report::Options options;
-      options.directory = settings.output_directory;
+      options.directory    = settings.output_directory;
+      options.torque_cycle = settings.loading.torque_cycle;
+      options.rated_torque = settings.loading.rated_torque;
       postprocess::Report report(options, comm);
       // Every rank checked the geometry (so a bad prm fails everywhere
       // alike); only rank 0 computes and writes.
@@ -52,8 +79,8 @@ namespace cycloid
       const auto               &geo = model.geometry();
       const std::vector<double> angles =
         settings.loading.crank_angles(geo.mesh_period());
-      const std::vector<double> &torques  = settings.loading.torques;
-      const unsigned int         n_states = angles.size() * torques.size();
+      const std::vector<double> torques  = settings.loading.load_values();
+      const unsigned int        n_states = angles.size() * torques.size();
       std::cout << "cycloid-contact: analytic model '"
                 << model.pair_model().name()
                 << "', zp = " << settings.model.geometry.n_pins
@@ -78,7 +105,13 @@ namespace cycloid
               analytic::LoadState load;
               try
                 {
-                  load = model.solve(pins, torques[t], beta);
+                  // A torque cycle's zero is the limit of its branch.
+                  load =
+                    settings.loading.torque_cycle && torques[t] == 0 ?
+                      model.zero_torque_limit(
+                        pins,
+                        parameters::LoadingParameters::zero_side(torques, t)) :
+                      model.solve(pins, torques[t], beta);
                 }
               catch (dealii::ExceptionBase &e)
                 {
@@ -101,8 +134,8 @@ namespace cycloid
               dealii::Utilities::System::get_memory_stats(stats);
               state.peak_memory_MB = stats.VmHWM / 1024.; // rank 0 only
               report.write(state, torques[t]);
-              if (n_states <= 20 || step % std::max(1u, n_states / 10) == 0 ||
-                  step + 1 == n_states)
+              if (print_state(
+                    step / torques.size(), angles.size(), t, torques.size()))
                 report.print(state,
                              "  state " + std::to_string(step + 1) + "/" +
                                std::to_string(n_states) + ": ");

@@ -29,12 +29,24 @@ namespace cycloid
 
 
 
+    bool
+    cycle_zero(const parameters::LoadingParameters &loading,
+               const std::vector<double>           &loads,
+               const unsigned int                   i)
+    {
+      return loading.torque_cycle && loads[i] == 0;
+    }
+
+
+
     postprocess::Report::Options
     report_options(const FeRunSettings &settings)
     {
       postprocess::Report::Options options;
       options.directory        = settings.stage.output_directory;
       options.rotation_control = settings.loading.rotation_control;
+      options.torque_cycle     = settings.loading.torque_cycle;
+      options.rated_torque     = settings.loading.rated_torque;
       return options;
     }
 
@@ -79,13 +91,18 @@ namespace cycloid
       const std::vector<double>   loads = settings.loading.load_values();
       for (unsigned int step = 0; step < loads.size(); ++step)
         {
-          results::StageState state = scene.solve(loads[step]);
-          state.step                = step;
+          const bool          limit = cycle_zero(settings.loading, loads, step);
+          results::StageState state =
+            limit ? scene.zero_torque_limit(
+                      parameters::LoadingParameters::zero_side(loads, step)) :
+                    scene.solve(loads[step]);
+          state.step = step;
           report.write(state, loads[step]);
           report.print(state,
                        "  state " + std::to_string(step + 1) + "/" +
                          std::to_string(loads.size()) + ": ");
-          if (settings.write_solution)
+          // (A zero-torque limit has no field of its own.)
+          if (settings.write_solution && !limit)
             scene.output_results(step, record);
         }
       report.finish();
@@ -137,11 +154,19 @@ namespace cycloid
                        settings.stage, mesh_request(settings, angles[k]), comm);
           for (unsigned int t = 0; t < loads.size(); ++t, ++step)
             {
-              scene->warm_start(snapshots[t]);
-              results::StageState state = scene->solve(loads[t]);
-              state.step                = step;
-              snapshots[t]              = scene->active_set_snapshot();
-              const double elapsed      = std::chrono::duration<double>(
+              const bool limit = cycle_zero(settings.loading, loads, t);
+              results::StageState state;
+              if (limit)
+                state = scene->zero_torque_limit(
+                  parameters::LoadingParameters::zero_side(loads, t));
+              else
+                {
+                  scene->warm_start(snapshots[t]);
+                  state        = scene->solve(loads[t]);
+                  snapshots[t] = scene->active_set_snapshot();
+                }
+              state.step           = step;
+              const double elapsed = std::chrono::duration<double>(
                                        std::chrono::steady_clock::now() - start)
                                        .count();
               std::ostringstream prefix;
@@ -153,7 +178,7 @@ namespace cycloid
                      << " s: " << std::setprecision(6);
               report.write(state, loads[t]);
               report.print(state, prefix.str());
-              if (settings.write_solution)
+              if (settings.write_solution && !limit)
                 scene->output_results(step, record);
             }
         }

@@ -32,8 +32,9 @@ namespace cycloid
         AssertThrow(s.run.loading.load_values().size() == 1,
                     dealii::ExcMessage(
                       "Run = transient: give one value of Loading/Torque (or "
-                      "Loading/Rotation under rotation control); the ramp is "
-                      "set by Transient/Ramp time."));
+                      "Loading/Rotation under rotation control) and keep "
+                      "Loading/Torque cycle = false; the ramp is set by "
+                      "Transient/Ramp time."));
         return s;
       }
 

@@ -398,11 +398,15 @@ namespace cycloid
     StageScene<dim>::solve(const double load)
     {
       const auto start = std::chrono::steady_clock::now();
-      if (!warm)
+      // The previous state's active set is the warm start, unless the load
+      // changed sign (the other flanks carry it): then the analytical
+      // model's rotation picks the new side's pins.
+      if (!warm || load * warm_load < 0)
         {
           initialise_active_set(load);
           warm = true;
         }
+      warm_load                        = load;
       contact::ContactState result     = solve_state(load);
       unsigned int          iterations = result.iterations;
       unsigned long         linear     = result.linear_iterations;
@@ -464,6 +468,108 @@ namespace cycloid
           // arm = -(r x F)/|F|.
           if (p.fn > 0)
             p.arm = -moment[k] / p.fn;
+        }
+    }
+
+
+
+    template <int dim>
+    double
+    StageScene<dim>::takeup_rotation(const int sign) const
+    {
+      // Rigid take-up (lost motion) of the exact geometry, as in the
+      // analytical model: the rotation that closes the first clearance of
+      // any disc on the side of the torque's sign.
+      double takeup = std::numeric_limits<double>::max();
+      for (unsigned int d = 0; d < settings.scene.n_discs; ++d)
+        for (const auto &pc : geo.pin_contacts(d, psi))
+          if (sign * pc.arm > 1e-9)
+            takeup =
+              std::min(takeup, std::max(pc.clearance, 0.) / std::abs(pc.arm));
+      return takeup;
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::set_pin_geometry(results::StageState &s) const
+    {
+      const unsigned int zp = settings.geometry.n_pins;
+      for (unsigned int d = 0; d < settings.scene.n_discs; ++d)
+        for (const auto &pc : geo.pin_contacts(d, psi))
+          {
+            auto &p = s.pins[d * zp + pc.pin];
+            if (p.fn == 0)
+              p.arm = pc.arm;
+            p.clearance     = pc.clearance;
+            p.phase         = pc.phase;
+            p.contact_point = pc.contact_point;
+            p.approach      = s.rotation * pc.arm - pc.clearance;
+            if (p.fn > 0)
+              p.contact_halfwidth =
+                contact_halfwidth(d, pc.pin, pc.contact_point);
+            p.hertz_halfwidth =
+              analytic::stage_hertz_half_width(p.fn,
+                                               pc.curvature_radius,
+                                               settings.geometry,
+                                               settings.material,
+                                               settings.scene);
+            analytic::set_hertz_stresses(p,
+                                         settings.geometry.tooth_width,
+                                         settings.material.disc.poissons_ratio);
+            s.reaction_torque += p.fn * p.arm * u::Nm_per_Nmm;
+          }
+    }
+
+
+
+    template <int dim>
+    results::StageState
+    StageScene<dim>::zero_torque_limit(const int side) const
+    {
+      // T -> 0 on one side: the discs turned by the take-up towards that
+      // side, every pin just touching or clear, no force, no solve.
+      const unsigned int  zp = settings.geometry.n_pins;
+      results::StageState s;
+      s.crank     = psi;
+      s.torque    = 0;
+      s.takeup    = side * takeup_rotation(side);
+      s.rotation  = s.takeup;
+      s.k_tangent = std::numeric_limits<double>::quiet_NaN();
+      s.dofs      = contact->elasticity().n_dofs();
+      s.pins.resize(settings.scene.n_discs * zp);
+      for (unsigned int k = 0; k < s.pins.size(); ++k)
+        {
+          s.pins[k].disc = k / zp;
+          s.pins[k].pin  = k % zp;
+        }
+      set_pin_geometry(s);
+      s.peak_memory_MB = postprocess::peak_memory_MB(comm);
+      return s;
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::set_peak_pressures(
+      std::vector<results::PinState> &pins) const
+    {
+      // Nodal pressure = normal reaction / the node's share of the slave
+      // surface (as in the VTU field); the model's reactions are already
+      // per unit thickness in 2D, so no width scaling.
+      const unsigned int zp        = settings.geometry.n_pins;
+      const auto        &slaves    = contact->slave_nodes();
+      const auto        &reactions = contact->slave_reactions();
+      for (const unsigned int i : contact->active_set())
+        {
+          const auto &s = slaves[i];
+          if (s.weight <= 0)
+            continue;
+          auto &p = pins[s.body * zp + s.cylinder];
+          p.max_pressure =
+            std::max(p.max_pressure, (reactions[i] * s.normal) / s.weight);
         }
     }
 
@@ -537,35 +643,10 @@ namespace cycloid
             s.pins[d * zp + j].pin  = j;
           }
       sum_pin_forces(s.pins);
-
-      // Rigid take-up (lost motion) of the exact geometry, as in the
-      // analytical model: the rotation that closes the first clearance of
-      // any disc.
-      double takeup = std::numeric_limits<double>::max();
-      for (unsigned int d = 0; d < nd; ++d)
-        for (const auto &pc : geo.pin_contacts(d, psi))
-          {
-            if ((s.torque >= 0 ? pc.arm : -pc.arm) > 1e-9)
-              takeup =
-                std::min(takeup, std::max(pc.clearance, 0.) / std::abs(pc.arm));
-            auto &p = s.pins[d * zp + pc.pin];
-            if (p.fn == 0)
-              p.arm = pc.arm;
-            p.clearance     = pc.clearance;
-            p.phase         = pc.phase;
-            p.contact_point = pc.contact_point;
-            p.approach      = s.rotation * pc.arm - pc.clearance;
-            p.contact_halfwidth =
-              contact_halfwidth(d, pc.pin, pc.contact_point);
-            p.hertz_halfwidth =
-              analytic::stage_hertz_half_width(p.fn,
-                                               pc.curvature_radius,
-                                               settings.geometry,
-                                               settings.material,
-                                               settings.scene);
-            s.reaction_torque += p.fn * p.arm * u::Nm_per_Nmm;
-          }
-      s.takeup = (s.torque >= 0 ? 1. : -1.) * takeup;
+      set_pin_geometry(s);
+      set_peak_pressures(s.pins);
+      const int sign = s.torque >= 0 ? 1 : -1;
+      s.takeup       = sign * takeup_rotation(sign);
       return s;
     }
 

@@ -89,6 +89,15 @@ namespace cycloid
             const double                torque,
             const double                beta_guess = 0.) const;
 
+      /**
+       * The limit of the load state as the torque goes to zero from side
+       * @p side (+1 or -1): beta is the signed take-up rotation, every pin
+       * just touching or clear, no force. (A frictionless stage at zero
+       * torque may rest anywhere between the two limits.)
+       */
+      LoadState
+      zero_torque_limit(const std::vector<PinLoad> &pins, const int side) const;
+
     private:
       /** Torque [N mm] and slope [N mm/rad] at rotation beta, filling the
        * per-pin state. */

@@ -5,6 +5,7 @@
 #include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/parameters/material.h>
 #include <cycloid/parameters/scene.h>
+#include <cycloid/results/stage_state.h>
 
 #include <memory>
 #include <string>
@@ -58,6 +59,40 @@ namespace cycloid
                            const geometry::GeometryParameters   &geometry,
                            const parameters::MaterialParameters &material,
                            const parameters::SceneParameters    &scene);
+
+    /**
+     * @brief The largest subsurface shear stress of Hertz's line contact
+     * in plane strain, as fractions of the peak pressure p0 and the
+     * half-width a: the maximum over the depth z of the Tresca stress
+     * (largest minus smallest principal stress) / 2 on the symmetry axis,
+     * where it is largest, with sigma_x and sigma_z from the closed-form
+     * Hertz field and sigma_y = nu (sigma_x + sigma_z). For nu = 0.3 this
+     * is the textbook 0.300 p0 at z = 0.786 a.
+     */
+    struct SubsurfaceShear
+    {
+      /** tau_max / p0 [-]. */
+      double stress_ratio = 0;
+      /** Depth of tau_max over a [-]. */
+      double depth_ratio = 0;
+    };
+
+    /** The subsurface shear of Hertz's line contact for Poisson's ratio
+     * @p poisson of the body it acts in. */
+    SubsurfaceShear
+    hertz_subsurface_shear(const double poisson);
+
+    /**
+     * @brief Fill the Hertz stress figures of @p pin from its force fn and
+     * its Hertz half-width: the peak pressure p0 = 2 F / (pi a b) over the
+     * tooth width @p tooth_width [mm], and the largest subsurface shear
+     * stress and its depth in the disc (Poisson's ratio @p poisson). The
+     * model's own peak pressure (max_pressure) is left to the model.
+     */
+    void
+    set_hertz_stresses(results::PinState &pin,
+                       const double       tooth_width,
+                       const double       poisson);
 
     /**
      * @brief Interface of a pin-disc pair-stiffness model: the normal force

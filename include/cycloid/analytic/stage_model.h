@@ -77,6 +77,14 @@ namespace cycloid
         return distribution.solve(pins, torque, beta_guess);
       }
 
+      /** The zero-torque limit from side @p side (+1 or -1) over already
+       * computed unloaded pins (LoadDistribution::zero_torque_limit()). */
+      LoadState
+      zero_torque_limit(const std::vector<PinLoad> &pins, const int side) const
+      {
+        return distribution.zero_torque_limit(pins, side);
+      }
+
       /**
        * The solved load state @p load at crank angle @p psi [rad] as the
        * stage state every model returns (cost figures other than the

@@ -24,11 +24,45 @@ namespace cycloid
       bool rotation_control = false;
       /** Rotations for rotation control [degrees]. */
       std::vector<double> rotations_deg{0.01};
-      /** The load values of the states: torques [N m], or rotations
-       * [rad] under rotation control. */
+      /** Rated torque of the catalogue torque cycle [N m]. */
+      double rated_torque = 1000.;
+      /** Solve the catalogue torque cycle 0 -> +rated -> -rated -> 0
+       * instead of the Torque list. */
+      bool torque_cycle = false;
+      /** Steps of the torque cycle (a multiple of 4: a quarter per
+       * branch). */
+      unsigned int torque_cycle_steps = 40;
+      /** Relative torque at which catalogues read the lost motion
+       * (+-3 % of the rated torque). */
+      static constexpr double lost_motion_torque = 0.03;
+
+      /**
+       * The torques [N m] of the catalogue cycle in cycle order: four
+       * branches 0 -> +R -> 0 -> -R -> 0 in torque_cycle_steps / 4 equal
+       * steps each, plus the states the catalogue figures read (+-3 % and
+       * +-50 % of R) where the steps miss them. The zero between the
+       * branches appears twice, as the end of one branch and the start of
+       * the next: a frictionless stage at zero torque may rest anywhere in
+       * its clearance, so the runs report each zero as the limit of its
+       * branch (zero_side()), and the torsion curve is vertical there.
+       */
+      std::vector<double>
+      cycle_torques() const;
+
+      /** The side (+1 or -1) from which the zero torque @p loads[i] of a
+       * torque cycle is approached: that of the branch it ends (the
+       * torque before it), or for the first zero of a branch, of the branch
+       * it starts. */
+      static int
+      zero_side(const std::vector<double> &loads, const unsigned int i);
+
+      /** The load values of the states: torques [N m] (the Torque list or
+       * the torque cycle), or rotations [rad] under rotation control. */
       std::vector<double>
       load_values() const
       {
+        if (torque_cycle)
+          return cycle_torques();
         if (!rotation_control)
           return torques;
         std::vector<double> r;

@@ -1,6 +1,7 @@
 #ifndef cycloid_postprocess_report_h
 #define cycloid_postprocess_report_h
 
+#include <cycloid/postprocess/catalogue.h>
 #include <cycloid/results/stage_state.h>
 
 #include <cstdint>
@@ -86,6 +87,11 @@ namespace cycloid
          * crank angles (phase sweeps; not for a transient, whose load
          * changes from step to step). */
         bool fluctuation = true;
+        /** The states are a catalogue torque cycle (Loading/Torque cycle):
+         * write torsion_curve.csv and rigidity.csv. */
+        bool torque_cycle = false;
+        /** Rated torque of the cycle [N m]. */
+        double rated_torque = 0;
         /** Continue the files of a run being resumed instead of starting
          * them: truncate each to the size in @p resume_sizes (the sizes at
          * the checkpoint, in the order of files()), then append. */
@@ -123,8 +129,10 @@ namespace cycloid
       print(const results::StageState &state, const std::string &prefix) const;
 
       /** If the states covered more than one crank angle: write
-       * fluctuation.csv and print the stiffness over the period per load.
-       * Then name the files written. */
+       * fluctuation.csv and print the stiffness and transmission error over
+       * the period per load. For a torque cycle: write torsion_curve.csv and
+       * rigidity.csv and print the catalogue figures. Then name the most
+       * loaded pin of the run and the files written. */
       void
       finish() const;
 
@@ -139,21 +147,45 @@ namespace cycloid
       /** Header line of energy.csv. */
       static std::string
       energy_header();
+      /** Header line of torsion_curve.csv. */
+      static std::string
+      torsion_curve_header();
+      /** Header line of rigidity.csv. */
+      static std::string
+      rigidity_header();
 
     private:
-      /** The stiffness of one load over the crank angles, in order. */
+      /** The stiffness and rotation of one load over the crank angles, in
+       * order. */
       struct Series
       {
         double              load = 0;
-        std::vector<double> crank, k_tangent, k_secant;
+        std::vector<double> crank, k_tangent, k_secant, rotation;
       };
+      /** The most loaded pin of the run and the state it was in. */
+      struct PeakPin
+      {
+        unsigned int      step   = 0;
+        double            crank  = 0;
+        double            torque = 0;
+        results::PinState pin;
+      };
+      /** Write fluctuation.csv and print its figures (sweeps). */
+      void
+      write_fluctuation() const;
+      /** Write torsion_curve.csv and rigidity.csv and print the catalogue
+       * figures (torque cycles). */
+      void
+      write_torque_cycle() const;
 
-      const Options       options;
-      const bool          active;
-      std::ofstream       stiffness;
-      std::ofstream       pin_forces;
-      std::ofstream       energy;
-      std::vector<Series> series;
+      const Options             options;
+      const bool                active;
+      std::ofstream             stiffness;
+      std::ofstream             pin_forces;
+      std::ofstream             energy;
+      std::vector<Series>       series;
+      std::vector<TorsionPoint> cycle;
+      PeakPin                   peak;
     };
   } // namespace postprocess
 } // namespace cycloid

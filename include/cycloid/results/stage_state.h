@@ -34,6 +34,10 @@ namespace cycloid
       constexpr double deg_per_rad = 180. / pi;
       /** Radians per arcminute. */
       constexpr double rad_per_arcmin = pi / (180. * 60.);
+      /** Arcminutes per radian. */
+      constexpr double arcmin_per_rad = 180. * 60. / pi;
+      /** Arcseconds per radian. */
+      constexpr double arcsec_per_rad = 180. * 3600. / pi;
       /** N mm per N m (torques, and J per N mm inverted). */
       constexpr double Nmm_per_Nm = 1e3;
       /** N m per N mm (also J per N mm). */
@@ -75,6 +79,17 @@ namespace cycloid
       double contact_halfwidth = 0;
       /** Hertz line-contact half-width at this force [mm]. */
       double hertz_halfwidth = 0;
+      /** Peak normal contact pressure of the model (FE: the largest nodal
+       * pressure of the pair from the contact multipliers; analytic:
+       * Hertz's) [MPa]. */
+      double max_pressure = 0;
+      /** Hertz peak pressure p0 = 2 F / (pi a b) at this force [MPa]. */
+      double hertz_pressure = 0;
+      /** Largest subsurface shear stress (Tresca) of the Hertz field at
+       * this force [MPa]. */
+      double max_shear_stress = 0;
+      /** Its depth below the surface [mm]. */
+      double max_shear_depth = 0;
     };
 
     /**

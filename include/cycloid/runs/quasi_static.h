@@ -27,6 +27,14 @@ namespace cycloid
     mesh::MeshRequest
     mesh_request(const FeRunSettings &settings, const double psi);
 
+    /** Whether state @p i of @p loads is a zero of the torque cycle of
+     * @p loading, reported as its branch's limit (StageScene::
+     * zero_torque_limit()) instead of solved. */
+    bool
+    cycle_zero(const parameters::LoadingParameters &loading,
+               const std::vector<double>           &loads,
+               const unsigned int                   i);
+
     /** The report of a run of load states with @p settings. */
     postprocess::Report::Options
     report_options(const FeRunSettings &settings);

@@ -139,6 +139,18 @@ namespace cycloid
       results::StageState
       state(const contact::ContactState &result, const double load) const;
 
+      /**
+       * The limit of the state as the torque goes to zero from side @p side
+       * (+1 or -1) at the current crank angle: the discs turned by the
+       * rigid take-up towards that side, no pin force. A frictionless stage
+       * at zero torque may rest anywhere between the two limits (its
+       * clearance), so a torque cycle reports each zero as its branch's
+       * limit; nothing is solved (collective only through the memory
+       * figure).
+       */
+      results::StageState
+      zero_torque_limit(const int side) const;
+
       /** Crank angle of the discs' current placement [rad]. */
       double
       crank_angle() const
@@ -233,6 +245,18 @@ namespace cycloid
       /** Per disc and pin: force sums in the housing frame and moment. */
       void
       sum_pin_forces(std::vector<results::PinState> &pins) const;
+      /** The rigid take-up rotation towards the side @p sign of the
+       * exact geometry at the current crank angle [rad] (unsigned). */
+      double
+      takeup_rotation(const int sign) const;
+      /** Per pin of @p s: arm (of unloaded pins), clearance, phase, contact
+       * point, approach, contact and Hertz widths, Hertz stresses; adds
+       * the pins' moments to the reaction torque. */
+      void
+      set_pin_geometry(results::StageState &s) const;
+      /** Per disc and pin: the largest nodal contact pressure [MPa]. */
+      void
+      set_peak_pressures(std::vector<results::PinState> &pins) const;
       /** Half-width of the active contact of disc @p d on pin @p j [mm]. */
       double
       contact_halfwidth(const unsigned int      d,
@@ -254,6 +278,8 @@ namespace cycloid
       std::unique_ptr<contact::ContactProblem<dim>> contact;
       dealii::TrilinosWrappers::MPI::Vector         rotation;
       bool                                          warm = false;
+      /** The load of the state the active set comes from. */
+      double warm_load = 0;
     };
   } // namespace stage
 } // namespace cycloid
