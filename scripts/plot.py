@@ -79,6 +79,17 @@ def read_csv(path):
     return {name: data[:, i] for i, name in enumerate(header)}
 
 
+def _one_state_per_load(s):
+    """The rows of stiffness columns @p s with a non-zero torque, the first
+    of each (crank angle, torque)."""
+    seen, keep = set(), []
+    for i, (c, t) in enumerate(zip(s["crank_deg"], s["torque_Nm"])):
+        if t != 0 and (c, t) not in seen:
+            seen.add((c, t))
+            keep.append(i)
+    return {name: column[keep] for name, column in s.items()}
+
+
 def read_prm(path):
     """`set` entries of a ParameterHandler file as {"Sub/Sub/Name": value}."""
     values, section = {}, []
@@ -137,6 +148,13 @@ class Run:
         self.rigidity = read_csv(os.path.join(directory, "rigidity.csv"))
         self.transient = self.energy is not None or self.prm.get("Run") == "transient"
         self.by_rotation = self._rotation_control()
+        # A torque cycle passes each torque twice at a crank angle (loading
+        # and unloading, the same state without friction) and its zero
+        # torque as the two ends of the clearance, where K is undefined:
+        # the stiffness and TE figures show each torque once.
+        self.cycle = self.torsion is not None
+        if self.cycle and self.stiffness is not None:
+            self.stiffness = _one_state_per_load(self.stiffness)
 
     def _rotation_control(self):
         """Under rotation control the torque varies with the crank angle and
@@ -225,6 +243,8 @@ class Run:
             loads = self.loads()
             if self.transient:
                 parts.append(f"T up to {fmt(max(np.abs(self.stiffness['torque_Nm'])))} N·m")
+            elif self.cycle:
+                parts.append(f"torque cycle 0 → ±{fmt(max(np.abs(self.torsion['torque_Nm'])))} N·m → 0")
             else:
                 unit = "°" if self.by_rotation else " N·m"
                 shown = [fmt(math.degrees(v) if self.by_rotation else v) for v in loads]

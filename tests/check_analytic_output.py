@@ -14,7 +14,14 @@ section 5.3):
     the pair model's force at the written approach;
   * K_tangent = sum(k l^2) and K_secant = T / beta;
   * periodicity between the first and last phase of a closed period (when
-    the load introduction is axisymmetric).
+    the load introduction is axisymmetric);
+  * the Hertz pressure p0 = 2F/(pi a b) and the subsurface shear stress of
+    every loaded pin, the transmission error (beta in arcsec) and its
+    peak-to-peak over a sweep;
+  * for a catalogue torque cycle: the torques in cycle order, zero-torque
+    states at the rigid take-up of their side, and rigidity.csv recomputed
+    from torsion_curve.csv (rigidity b/a between 50 and 100 % of the rated
+    torque, lost motion at +-3 %, backlash = the two take-ups).
 
 Usage: check_analytic_output.py FILE.prm OUTPUT_DIR
 """
@@ -24,6 +31,7 @@ import sys
 
 import numpy as np
 
+from catalogue_figures import ARCMIN, ARCSEC, catalogue
 from cycloid_prm import read_prm
 
 DEFAULTS = {
@@ -45,6 +53,9 @@ DEFAULTS = {
     ("Material", "Pin Young's modulus"): "212000",
     ("Material", "Pin Poisson's ratio"): "0.3",
     ("Loading", "Number of phases"): "1",
+    ("Loading", "Torque cycle"): "false",
+    ("Loading", "Rated torque"): "1000",
+    ("Loading", "Torque cycle steps"): "40",
     ("Scene", "Number of discs"): "2",
     ("Scene", "Pins"): "elastic",
     ("Scene", "Load introduction"): "crank holes",
@@ -64,6 +75,81 @@ def read_csv(path):
     with open(path) as f:
         rows = list(csv.DictReader(f))
     return rows
+
+
+def torque_cycle(get):
+    """The catalogue cycle's torques as doc/user-guide.md describes them
+    (empty if the run has none): 0 -> +R -> 0 -> -R -> 0 in steps/4 equal
+    steps per branch, plus 3 % and 50 % of R; the middle zero twice."""
+    if get("Loading", "Torque cycle") != "true":
+        return []
+    rated, steps = float(get("Loading", "Rated torque")), int(get("Loading", "Torque cycle steps"))
+    q = steps // 4
+    branch = sorted(set([0.0, 0.03, 0.5] + [i / q for i in range(1, q + 1)]))
+    loads = []
+    for sign in (1, -1):
+        loads += [sign * f * rated for f in branch] + [sign * f * rated for f in branch[-2::-1]]
+    return loads
+
+
+def hertz_shear(nu):
+    """(tau_max / p0, depth / a) of the line contact: the largest Tresca
+    stress on the axis of the closed-form plane-strain Hertz field."""
+    def tresca(t):
+        root = np.sqrt(1 + t * t)
+        sx, sz = -((1 + 2 * t * t) / root - 2 * t), -1 / root
+        principal = np.stack([sx, nu * (sx + sz), sz])
+        return (principal.max(axis=0) - principal.min(axis=0)) / 2
+    t = np.linspace(0, 3, 30001)
+    centre = t[int(np.argmax(tresca(t)))]
+    t = np.linspace(max(centre - 2e-4, 0), centre + 2e-4, 400001)  # zoom in
+    tau = tresca(t)
+    i = int(np.argmax(tau))
+    return tau[i], t[i]
+
+
+def check_torque_cycle(outdir, stiffness, cycle, takeup, rated):
+    """torsion_curve.csv is the states in cycle order; rigidity.csv holds the
+    figures recomputed from it; the backlash is the two take-ups."""
+    curve = read_csv(f"{outdir}/torsion_curve.csv")
+    figures = read_csv(f"{outdir}/rigidity.csv")
+    check(len(curve) == len(stiffness), "torsion_curve.csv: one row per state")
+    for c, s in zip(curve, stiffness):
+        check(c["torque_Nm"] == s["torque_Nm"] and c["rotation_rad"] == s["rotation_rad"], "torsion curve != states")
+        check(abs(float(c["rotation_arcmin"]) - float(c["rotation_rad"]) * ARCMIN) <= 1e-9, "rotation_arcmin")
+    cranks = sorted(set(c["crank_deg"] for c in curve), key=float)
+    check(len(figures) == len(cranks), "rigidity.csv: one row per crank angle")
+    for row, crank in zip(figures, cranks):
+        one = [(float(c["torque_Nm"]), float(c["rotation_rad"])) for c in curve if c["crank_deg"] == crank]
+        check(len(one) == len(cycle) and all(abs(T - c) <= 1e-9 * rated for (T, _), c in zip(one, cycle)),
+              f"crank {crank}: the torques are not the catalogue cycle")
+        rigidity, lost, backlash = catalogue(one, rated, check)
+        key = round(math.radians(float(crank)), 12)
+        independent = (takeup[(key, 1)] + takeup[(key, -1)]) * ARCMIN
+        print(f"crank {crank} deg: rigidity {rigidity:.6g} N m/arcmin, lost motion {lost:.6g}, "
+              f"backlash {backlash:.6g} arcmin (independent take-ups {independent:.6g})")
+        for name, value in (("torsional_rigidity_Nm_per_arcmin", rigidity), ("lost_motion_arcmin", lost),
+                            ("backlash_arcmin", backlash), ("rated_torque_Nm", rated)):
+            check(abs(float(row[name]) - value) <= 1e-9 * max(abs(value), 1e-9), f"rigidity.csv {name}")
+        check(abs(backlash - independent) <= 1e-7 * max(independent, 1e-3), "backlash is not the two take-ups")
+        check(abs(float(row["lost_motion_clearance_arcmin"]) - independent) <= 1e-7 * max(independent, 1e-3),
+              "the clearance part of the lost motion is not the take-ups")
+
+
+def check_fluctuation(outdir, stiffness):
+    """fluctuation.csv's transmission error: mean and peak-to-peak of beta
+    over the crank angles (a torque met twice at one crank angle, as in a
+    torque cycle, counts once: its first state)."""
+    for row in read_csv(f"{outdir}/fluctuation.csv"):
+        first = {}
+        for s in stiffness:
+            if s["torque_Nm"] == row["torque_Nm"]:
+                first.setdefault(s["crank_deg"], float(s["rotation_rad"]) * ARCSEC)
+        te = list(first.values())
+        check(abs(float(row["transmission_error_pp_arcsec"]) - (max(te) - min(te))) <= 1e-9 * max(abs(x) for x in te) + 1e-12,
+              "fluctuation.csv: transmission error peak-to-peak")
+        check(abs(float(row["transmission_error_mean_arcsec"]) - sum(te) / len(te)) <= 1e-9 * abs(sum(te) / len(te)),
+              "fluctuation.csv: transmission error mean")
 
 
 def main(prm_path, outdir):
@@ -163,7 +249,9 @@ def main(prm_path, outdir):
     stiffness = read_csv(f"{outdir}/stiffness.csv")
     pins = read_csv(f"{outdir}/pin_forces.csv")
     n_phases = int(get("Loading", "Number of phases"))
-    n_torques = len(get("Loading", "Torque").split(","))
+    cycle = torque_cycle(get)
+    n_torques = len(cycle) if cycle else len(get("Loading", "Torque").split(","))
+    shear_ratio, depth_ratio = hertz_shear(nd)
     check(len(stiffness) == n_phases * n_torques, f"{len(stiffness)} states, expected {n_phases * n_torques}")
     check(len(pins) == len(stiffness) * n_discs * zp, "pin_forces.csv row count")
 
@@ -172,7 +260,8 @@ def main(prm_path, outdir):
         by_step.setdefault(int(row["step"]), []).append(row)
 
     geometry_cache = {}
-    worst = {"clearance_um": 0, "arm_mm": 0, "torque": 0, "approach": 0, "K": 0}
+    takeup = {}  # (crank, side) -> rigid take-up rotation [rad]
+    worst = {"clearance_um": 0, "arm_mm": 0, "torque": 0, "approach": 0, "K": 0, "stress": 0}
     for state in stiffness:
         step = int(state["step"])
         psi = math.radians(float(state["crank_deg"]))
@@ -198,6 +287,10 @@ def main(prm_path, outdir):
                 nh = np.array([c * normal[0] - s * normal[1], s * normal[0] + c * normal[1]])
                 geometry_cache[key] = (gap, arm, nh, rho, depth(p))
             gap, arm, nh, rho, L = geometry_cache[key]
+            for side in (1, -1):
+                if side * arm > 1e-9:
+                    t = max(gap, 0) / (side * arm)
+                    takeup[(key[0], side)] = min(takeup.get((key[0], side), 1e300), t)
             clearance = float(row["clearance_um"]) * 1e-3
             worst["clearance_um"] = max(worst["clearance_um"], abs(clearance - gap) * 1e3)
             worst["arm_mm"] = max(worst["arm_mm"], abs(float(row["arm_mm"]) - arm))
@@ -211,9 +304,25 @@ def main(prm_path, outdir):
                 app, cmp = pair(fn, rho, L)
                 worst["approach"] = max(worst["approach"], abs(app - approach) / max(approach, 1e-9))
                 k_tan += arm * arm / cmp
+                # Hertz stresses from the independent half-width.
+                a = math.sqrt(4 * fn * (c_p + c_d) / (math.pi * b * (1 / rrp - 1 / rho)))
+                p0 = 2 * fn / (math.pi * a * b)
+                for column, value in (("hertz_pressure_MPa", p0), ("max_contact_pressure_MPa", p0),
+                                      ("max_shear_stress_MPa", shear_ratio * p0),
+                                      ("max_shear_depth_um", depth_ratio * a * 1e3)):
+                    worst["stress"] = max(worst["stress"], abs(float(row[column]) - value) / value)
             else:
                 check(approach < 1e-9, f"step {step} disc {d} pin {j}: approach {approach} without force")
             total += fn * arm * 1e-3
+        check(abs(float(state["transmission_error_arcsec"]) - beta * ARCSEC) <= 1e-9 * abs(beta * ARCSEC) + 1e-12,
+              f"step {step}: transmission error is not beta in arcsec")
+        if torque == 0:
+            # A torque cycle's zero: the branch's limit, the rigid take-up.
+            check(engaged == 0 and cycle, f"step {step}: a zero-torque state with force, or outside a cycle")
+            side = 1 if beta > 0 else -1
+            t = takeup[(round(psi, 12), side)]
+            check(abs(abs(beta) - t) <= 1e-9 * t + 1e-12, f"step {step}: zero-torque rotation {beta} is not the take-up {t}")
+            continue
         worst["torque"] = max(worst["torque"], abs(total - torque) / abs(torque))
         check(engaged == int(state["pins_in_contact"]), f"step {step}: pins_in_contact")
         k_tan *= 1e-3
@@ -226,9 +335,13 @@ def main(prm_path, outdir):
     check(worst["torque"] < 1e-10, "torque balance worse than 1e-10")
     check(worst["approach"] < 1e-6, "pair model force/approach differs by more than 1e-6")
     check(worst["K"] < 1e-7, "K_tangent differs from sum k l^2 by more than 1e-7")
+    check(worst["stress"] < 1e-6, "Hertz pressure or subsurface shear differs by more than 1e-6")
+    if cycle:
+        check_torque_cycle(outdir, stiffness, cycle, takeup, float(get("Loading", "Rated torque")))
 
     axisymmetric = get("Scene", "Load introduction") == "bore" or int(get("Geometry", "Number of crank holes")) == 0
     if n_phases > 1:
+        check_fluctuation(outdir, stiffness)
         first, last = stiffness[:n_torques], stiffness[-n_torques:]
         period = float(last[0]["crank_deg"]) - float(first[0]["crank_deg"])
         check(abs(period - 360 / zp) < 1e-9, f"sweep spans {period} deg, not one period 360/zp")

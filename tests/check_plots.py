@@ -84,6 +84,14 @@ class Data:
         self.rig = columns(os.path.join(d, "rigidity.csv"))
         self.transient = self.e is not None
         rotation = self.f is not None and "rotation_rad" in self.f
+        if self.s and self.tc:
+            # A torque cycle: each non-zero torque once per crank angle.
+            first = {}
+            for i, (c, t) in enumerate(zip(self.s["crank_deg"], self.s["torque_Nm"])):
+                if t != 0:
+                    first.setdefault((c, t), i)
+            rows = sorted(first.values())
+            self.s = {k: [v[i] for i in rows] for k, v in self.s.items()}
         if self.s:
             self.load = self.s["rotation_rad" if rotation else "torque_Nm"]
             self.loads = sorted({key(v) for v in self.load})

@@ -50,7 +50,9 @@ TEST(TorqueCycle, GoesZeroPlusMinusZeroWithTheCataloguePoints)
   unsigned int           k = 0;
   for (unsigned int i = 0; i < t.size(); ++i)
     if (t[i] == 0)
-      EXPECT_EQ(Loading::zero_side(t, i), side[k++]) << i;
+      {
+        EXPECT_EQ(Loading::zero_side(t, i), side[k++]) << i;
+      }
   EXPECT_DOUBLE_EQ(*std::max_element(t.begin(), t.end()), rated);
   EXPECT_DOUBLE_EQ(*std::min_element(t.begin(), t.end()), -rated);
   EXPECT_EQ(std::count(t.begin(), t.end(), 0.03 * rated), 2);
