@@ -6,6 +6,7 @@
 #include <cycloid/analytic/pair_stiffness.h>
 #include <cycloid/parameters/loading.h>
 #include <cycloid/postprocess/catalogue.h>
+#include <cycloid/postprocess/sweep_noise.h>
 #include <cycloid/results/stage_state.h>
 
 #include <gtest/gtest.h>
@@ -151,4 +152,33 @@ TEST(HertzStress, SubsurfaceShearOfTheLineContact)
   EXPECT_NEAR(pin.hertz_pressure, p0, 1e-9 * p0);
   EXPECT_NEAR(pin.max_shear_stress, 0.300283 * p0, 1e-5 * p0);
   EXPECT_NEAR(pin.max_shear_depth, 0.786151 * 0.05, 1e-7);
+}
+
+
+
+TEST(SweepNoise, NoiseIsNotResolvedASmoothVariationIs)
+{
+  // A first harmonic over one closed period, 10 phases: resolved.
+  std::vector<double> smooth, noisy;
+  for (unsigned int k = 0; k < 10; ++k)
+    smooth.push_back(1e7 * (1 + 0.02 * std::sin(2 * M_PI * k / 9.)));
+  const auto s = postprocess::sweep_noise(smooth);
+  EXPECT_NEAR(s.fluctuation, 0.04 * std::sin(2 * M_PI * 2 / 9.), 1e-12);
+  EXPECT_LT(s.closure, 1e-12);
+  EXPECT_TRUE(s.resolved) << s.floor;
+  // Zero-mean alternating "noise" of the same range: not resolved.
+  for (unsigned int k = 0; k < 10; ++k)
+    noisy.push_back(1e7 * (1 + 0.02 * ((k * 7) % 3 - 1.)));
+  const auto n = postprocess::sweep_noise(noisy);
+  EXPECT_FALSE(n.resolved) << n.fluctuation << " " << n.floor;
+  EXPECT_GT(n.roughness, n.fluctuation / 2);
+  // Three phases whose ends agree to round-off (a periodic mesh): the
+  // floor is unknown, and nothing is called resolved.
+  const auto u = postprocess::sweep_noise({1e7, 1.05e7, 1e7});
+  EXPECT_TRUE(std::isnan(u.floor));
+  EXPECT_FALSE(u.resolved);
+  // Three phases on different meshes: the closure is the floor.
+  const auto c = postprocess::sweep_noise({1e7, 1.05e7, 1.01e7});
+  EXPECT_NEAR(c.floor, 0.01, 1e-12);
+  EXPECT_TRUE(c.resolved);
 }

@@ -5,8 +5,10 @@
 
 #include <cycloid/parameters/loading.h>
 #include <cycloid/postprocess/report.h>
+#include <cycloid/postprocess/sweep_noise.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -282,7 +284,8 @@ namespace cycloid
              "K_tangent_min_Nm_per_rad,K_tangent_max_Nm_per_rad,"
              "K_tangent_fluctuation,K_secant_mean_Nm_per_rad,"
              "K_secant_fluctuation,K_tangent_period_closure,"
-             "transmission_error_mean_arcsec,transmission_error_pp_arcsec\n"
+             "transmission_error_mean_arcsec,transmission_error_pp_arcsec,"
+             "K_tangent_noise_floor,K_tangent_fluctuation_resolved\n"
           << std::setprecision(12);
       for (const Series &x : series)
         {
@@ -292,12 +295,14 @@ namespace cycloid
           const double closure = x.k_tangent.back() / x.k_tangent.front() - 1;
           // Transmission error: the loaded output rotation's deviation from
           // the kinematic one, which is beta itself.
-          const double te_mean = te.mean * u::arcsec_per_rad,
-                       te_pp   = (te.max - te.min) * u::arcsec_per_rad;
+          const double te_mean   = te.mean * u::arcsec_per_rad,
+                       te_pp     = (te.max - te.min) * u::arcsec_per_rad;
+          const SweepNoise noise = sweep_noise(x.k_tangent);
           out << x.load << ',' << x.crank.size() << ',' << kt.mean << ','
               << kt.min << ',' << kt.max << ',' << kt.fluctuation << ','
               << ks.mean << ',' << ks.fluctuation << ',' << closure << ','
-              << te_mean << ',' << te_pp << '\n';
+              << te_mean << ',' << te_pp << ',' << noise.floor << ','
+              << (noise.resolved ? 1 : 0) << '\n';
           std::cout << "  "
                     << (options.rotation_control ? "rotation " : "torque ")
                     << x.load << (options.rotation_control ? " rad" : " N m")
@@ -308,7 +313,34 @@ namespace cycloid
                     << "; transmission error mean " << te_mean
                     << " arcsec, peak-to-peak " << te_pp << " arcsec"
                     << std::endl;
+          print_noise(noise);
         }
+    }
+
+
+
+    void
+    Report::print_noise(const SweepNoise &noise)
+    {
+      if (noise.resolved)
+        std::cout << "    the fluctuation is resolved: above twice the "
+                     "noise floor "
+                  << noise.floor << " (doc/catalogue.md)" << std::endl;
+      else if (std::isnan(noise.floor))
+        std::cout << "    warning: the mesh noise floor of this sweep is "
+                     "unknown (fewer than 5 phases and the first and last "
+                     "phase on the same mesh): use Loading/Number of phases "
+                     ">= 9 before reading the fluctuation as physical"
+                  << std::endl;
+      else
+        std::cout << "    warning: the fluctuation " << noise.fluctuation
+                  << " is not resolved: it is below twice the noise floor "
+                  << noise.floor
+                  << " that mesh-to-mesh differences alone produce (first vs "
+                     "last phase, phase-to-phase roughness); refine the "
+                     "contact mesh (Mesh/Contact refinements) or take more "
+                     "phases before reading it as the stage's"
+                  << std::endl;
     }
 
 

@@ -2,6 +2,7 @@
 #define cycloid_postprocess_report_h
 
 #include <cycloid/postprocess/catalogue.h>
+#include <cycloid/postprocess/sweep_noise.h>
 #include <cycloid/results/stage_state.h>
 
 #include <cstdint>
@@ -173,6 +174,10 @@ namespace cycloid
       /** Write fluctuation.csv and print its figures (sweeps). */
       void
       write_fluctuation() const;
+      /** Print whether a sweep's fluctuation stands above its noise
+       * floor, and what to do when it does not. */
+      static void
+      print_noise(const SweepNoise &noise);
       /** Write torsion_curve.csv and rigidity.csv and print the catalogue
        * figures (torque cycles). */
       void
