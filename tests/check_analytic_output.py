@@ -150,6 +150,8 @@ def check_fluctuation(outdir, stiffness):
               "fluctuation.csv: transmission error peak-to-peak")
         check(abs(float(row["transmission_error_mean_arcsec"]) - sum(te) / len(te)) <= 1e-9 * abs(sum(te) / len(te)),
               "fluctuation.csv: transmission error mean")
+        check(row["K_tangent_noise_floor"] == "0" and row["K_tangent_fluctuation_resolved"] == "1",
+              "fluctuation.csv: the analytic model has no mesh noise")
 
 
 def main(prm_path, outdir):

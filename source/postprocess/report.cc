@@ -295,9 +295,16 @@ namespace cycloid
           const double closure = x.k_tangent.back() / x.k_tangent.front() - 1;
           // Transmission error: the loaded output rotation's deviation from
           // the kinematic one, which is beta itself.
-          const double te_mean   = te.mean * u::arcsec_per_rad,
-                       te_pp     = (te.max - te.min) * u::arcsec_per_rad;
-          const SweepNoise noise = sweep_noise(x.k_tangent);
+          const double te_mean = te.mean * u::arcsec_per_rad,
+                       te_pp   = (te.max - te.min) * u::arcsec_per_rad;
+          SweepNoise noise     = sweep_noise(x.k_tangent);
+          if (!options.discretised)
+            {
+              // No mesh, no mesh noise (the closure of an analytic sweep
+              // is the crank holes' physical lack of periodicity).
+              noise.floor    = 0;
+              noise.resolved = true;
+            }
           out << x.load << ',' << x.crank.size() << ',' << kt.mean << ','
               << kt.min << ',' << kt.max << ',' << kt.fluctuation << ','
               << ks.mean << ',' << ks.fluctuation << ',' << closure << ','
@@ -313,7 +320,8 @@ namespace cycloid
                     << "; transmission error mean " << te_mean
                     << " arcsec, peak-to-peak " << te_pp << " arcsec"
                     << std::endl;
-          print_noise(noise);
+          if (options.discretised)
+            print_noise(noise);
         }
     }
 
@@ -325,7 +333,8 @@ namespace cycloid
       if (noise.resolved)
         std::cout << "    the fluctuation is resolved: above twice the "
                      "noise floor "
-                  << noise.floor << " (doc/catalogue.md)" << std::endl;
+                  << noise.floor << " (doc/user-guide.md, fluctuation.csv)"
+                  << std::endl;
       else if (std::isnan(noise.floor))
         std::cout << "    warning: the mesh noise floor of this sweep is "
                      "unknown (fewer than 5 phases and the first and last "

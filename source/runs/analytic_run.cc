@@ -69,6 +69,7 @@ namespace cycloid
     {
       postprocess::Report::Options options;
       options.directory    = settings.output_directory;
+      options.discretised  = false;
       options.torque_cycle = settings.loading.torque_cycle;
       options.rated_torque = settings.loading.rated_torque;
       postprocess::Report report(options, comm);

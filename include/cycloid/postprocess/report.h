@@ -88,6 +88,10 @@ namespace cycloid
          * crank angles (phase sweeps; not for a transient, whose load
          * changes from step to step). */
         bool fluctuation = true;
+        /** The states come from a discretised model (FE), whose phases
+         * carry mesh-to-mesh noise: fluctuation.csv estimates its floor.
+         * False for the analytic model (floor 0). */
+        bool discretised = true;
         /** The states are a catalogue torque cycle (Loading/Torque cycle):
          * write torsion_curve.csv and rigidity.csv. */
         bool torque_cycle = false;
