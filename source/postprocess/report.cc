@@ -289,6 +289,10 @@ namespace cycloid
           << std::setprecision(12);
       for (const Series &x : series)
         {
+          // A torque cycle's zero torque has no stiffness (the states are
+          // the ends of the clearance).
+          if (options.torque_cycle && x.load == 0)
+            continue;
           const Statistics kt(x.k_tangent), ks(x.k_secant), te(x.rotation);
           // The first and last phase are one mesh period apart: their
           // ratio shows how far the discretisation is from periodic.
