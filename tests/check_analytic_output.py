@@ -124,7 +124,13 @@ def check_torque_cycle(outdir, stiffness, cycle, takeup, rated):
         check(len(one) == len(cycle) and all(abs(T - c) <= 1e-9 * rated for (T, _), c in zip(one, cycle)),
               f"crank {crank}: the torques are not the catalogue cycle")
         rigidity, lost, backlash = catalogue(one, rated, check)
+        # No friction: the loading and unloading branches are one curve.
         key = round(math.radians(float(crank)), 12)
+        for T, th in one:
+            same = [u for U, u in one if U == T]
+            tk = takeup[(key, 1 if T >= 0 else -1)]
+            check(T == 0 or all(abs(u - th) <= 1e-9 * abs(th - math.copysign(tk, T)) + 1e-15 for u in same),
+                  f"crank {crank}, T = {T}: the branches differ")
         independent = (takeup[(key, 1)] + takeup[(key, -1)]) * ARCMIN
         print(f"crank {crank} deg: rigidity {rigidity:.6g} N m/arcmin, lost motion {lost:.6g}, "
               f"backlash {backlash:.6g} arcmin (independent take-ups {independent:.6g})")
@@ -321,9 +327,14 @@ def main(prm_path, outdir):
         if torque == 0:
             # A torque cycle's zero: the branch's limit, the rigid take-up.
             check(engaged == 0 and cycle, f"step {step}: a zero-torque state with force, or outside a cycle")
-            side = 1 if beta > 0 else -1
+            # The side from the place in the cycle: the branch the zero
+            # ends (the torque before it), or for a branch's first zero
+            # the branch it starts.
+            i = step % len(cycle)
+            before = cycle[i - 1] if i > 0 else 0
+            side = math.copysign(1, before if before != 0 else cycle[i + 1])
             t = takeup[(round(psi, 12), side)]
-            check(abs(abs(beta) - t) <= 1e-9 * t + 1e-12, f"step {step}: zero-torque rotation {beta} is not the take-up {t}")
+            check(abs(beta - side * t) <= 1e-9 * t + 1e-12, f"step {step}: zero-torque rotation {beta} is not the take-up {side * t}")
             continue
         worst["torque"] = max(worst["torque"], abs(total - torque) / abs(torque))
         check(engaged == int(state["pins_in_contact"]), f"step {step}: pins_in_contact")

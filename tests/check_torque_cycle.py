@@ -9,8 +9,10 @@ Usage: check_torque_cycle.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
   of the rotations at zero torque);
 * the zero-torque states carry no force and sit at the rigid take-up of
   their side, and the backlash is the clearance part of the lost motion;
-* at crank angle 0 the stage is mirror-symmetric: theta(-T) = -theta(T)
-  (to 0.1 %, the mesh is not exactly symmetric);
+* the elastic twist theta - takeup is mirror-symmetric at crank angle 0
+  (to 0.1 %, the mesh is not exactly symmetric), the same on the loading
+  and unloading branches (no friction, 1e-6), and grows from zero at the
+  zero-torque limit to +-3 % and to the rated torque;
 * at the rated torque, the FE peak contact pressure of every pin whose
   Hertz zone the refined mesh resolves (half-width >= 30 um) is within 5 %
   of Hertz's p0 at its force;
@@ -72,10 +74,20 @@ def main(prm, dir1, dir2, exe):
         if T == 0:
             check(all(float(r["Fn_N"]) == 0 for r in by_step[i]), f"state {i}: force at zero torque")
             check(theta == float(c["takeup_rad"]), f"state {i}: zero-torque rotation is not the take-up")
-    for T, theta in points:
-        mirror = [t for U, t in points if U == -T]
+    # The elastic twist theta - takeup: mirror-symmetric at crank 0 (to
+    # 1e-3, the mesh is not exactly symmetric), the same on the loading and
+    # unloading branch (no friction), growing from the zero-torque limit.
+    twist = [(float(c["torque_Nm"]), float(c["rotation_rad"]) - float(c["takeup_rad"])) for c in curve]
+    for T, w in twist:
+        mirror = [v for U, v in twist if U == -T]
         if T > 0 and mirror:
-            check(abs(theta + mirror[0]) <= 1e-3 * abs(theta), f"T = {T}: theta {theta} vs -theta(-T) {-mirror[0]}")
+            check(abs(w + mirror[0]) <= 1e-3 * abs(w), f"T = {T}: twist {w} vs -twist(-T) {-mirror[0]}")
+        same = [v for U, v in twist if U == T]
+        check(all(abs(v - w) <= 1e-6 * abs(w) + 1e-15 for v in same), f"T = {T}: the branches differ: {same}")
+    for sign in (1, -1):
+        small = [sign * w for T, w in twist if T == sign * 0.03 * rated]
+        large = [sign * w for T, w in twist if T == sign * rated]
+        check(small and large and 0 < min(small) < min(large), f"side {sign}: the twist does not grow from the zero limit")
 
     # Peak pressures where the refined contact mesh resolves the zone: at
     # the rated torque, Hertz half-widths of 30 um or more (>= 5 nodes

@@ -123,9 +123,17 @@ namespace cycloid
         return;
       pin.hertz_pressure =
         2. * pin.fn / (dealii::numbers::PI * a * tooth_width);
-      const SubsurfaceShear shear = hertz_subsurface_shear(poisson);
-      pin.max_shear_stress        = shear.stress_ratio * pin.hertz_pressure;
-      pin.max_shear_depth         = shear.depth_ratio * a;
+      // The ratios depend on nu only: computed once per nu (a few hundred
+      // stress evaluations), not for every pin of every state.
+      static double          cached_poisson = -2;
+      static SubsurfaceShear shear;
+      if (poisson != cached_poisson)
+        {
+          shear          = hertz_subsurface_shear(poisson);
+          cached_poisson = poisson;
+        }
+      pin.max_shear_stress = shear.stress_ratio * pin.hertz_pressure;
+      pin.max_shear_depth  = shear.depth_ratio * a;
     }
 
 
@@ -454,7 +462,9 @@ namespace cycloid
       double slope   = 0;
       state.reaction_torque =
         torque_at(state.rotation, state.pins, slope) * 1e-3;
-      state.k_tangent = slope * 1e-3;
+      // The one-sided slope at first contact is not a stiffness of the
+      // stage (the other side is the clearance), as in the FE limit.
+      state.k_tangent = std::numeric_limits<double>::quiet_NaN();
       return state;
     }
 

@@ -170,7 +170,7 @@ namespace cycloid
       AssertThrow(!torques.empty(),
                   dealii::ExcMessage("Loading/Torque: give at least one "
                                      "torque."));
-      AssertThrow(torque_cycle_steps % 4 == 0,
+      AssertThrow(!torque_cycle || torque_cycle_steps % 4 == 0,
                   dealii::ExcMessage(
                     "Loading/Torque cycle steps = " +
                     std::to_string(torque_cycle_steps) +

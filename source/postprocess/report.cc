@@ -3,7 +3,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
-#include <cycloid/parameters/loading.h>
 #include <cycloid/postprocess/report.h>
 #include <cycloid/postprocess/sweep_noise.h>
 
@@ -180,16 +179,17 @@ namespace cycloid
       if (!active)
         return;
       const double crank_deg = s.crank * u::deg_per_rad;
-      stiffness << s.step << ',' << crank_deg << ',' << s.torque << ','
-                << s.rotation << ',' << s.k_secant() << ',' << s.k_tangent
-                << ',' << s.pins_in_contact() << ',' << s.iterations << ','
-                << s.dofs << ',' << s.wall_s << ','
+      // (+ 0. turns a negative zero, e.g. of a zero-torque limit, into 0.)
+      stiffness << s.step << ',' << crank_deg << ',' << s.torque + 0. << ','
+                << s.rotation + 0. << ',' << s.k_secant() + 0. << ','
+                << s.k_tangent << ',' << s.pins_in_contact() << ','
+                << s.iterations << ',' << s.dofs << ',' << s.wall_s << ','
                 << s.k_secant() * u::rad_per_arcmin << ','
-                << s.k_tangent * u::rad_per_arcmin << ',' << s.takeup << ','
-                << s.k_secant_elastic() << ',' << s.reaction_torque << ','
-                << s.max_pin_force() << ',' << s.linear_iterations << ','
-                << s.peak_memory_MB << ',' << s.rotation * u::arcsec_per_rad
-                << '\n';
+                << s.k_tangent * u::rad_per_arcmin << ',' << s.takeup + 0.
+                << ',' << s.k_secant_elastic() << ',' << s.reaction_torque
+                << ',' << s.max_pin_force() << ',' << s.linear_iterations << ','
+                << s.peak_memory_MB << ','
+                << s.rotation * u::arcsec_per_rad + 0. << '\n';
       // (+ 0. turns a negative zero into 0 in the CSV.)
       for (const results::PinState &p : s.pins)
         pin_forces << s.step << ',' << crank_deg << ',' << p.disc << ','
@@ -361,7 +361,6 @@ namespace cycloid
     void
     Report::write_torque_cycle() const
     {
-      using Loading = parameters::LoadingParameters;
       std::ofstream curve(options.directory + "/torsion_curve.csv");
       std::ofstream rigidity(options.directory + "/rigidity.csv");
       curve << torsion_curve_header() << '\n' << std::setprecision(12);
@@ -370,9 +369,9 @@ namespace cycloid
       for (unsigned int i = 0; i < cycle.size(); ++i)
         {
           const TorsionPoint &p = cycle[i];
-          curve << p.torque << ',' << p.rotation << ','
-                << p.rotation * u::arcmin_per_rad << ','
-                << p.crank * u::deg_per_rad << ',' << i << ',' << p.takeup
+          curve << p.torque + 0. << ',' << p.rotation + 0. << ','
+                << p.rotation * u::arcmin_per_rad + 0. << ','
+                << p.crank * u::deg_per_rad << ',' << i << ',' << p.takeup + 0.
                 << '\n';
           one.push_back(p);
           if (i + 1 < cycle.size() && cycle[i + 1].crank == p.crank)
@@ -380,7 +379,7 @@ namespace cycloid
           const CatalogueFigures c =
             catalogue_figures(one,
                               options.rated_torque,
-                              Loading::lost_motion_torque);
+                              options.lost_motion_fraction);
           rigidity << c.rigidity_Nm_per_arcmin << ',' << c.lost_motion_arcmin
                    << ',' << c.backlash_arcmin << ',' << c.rated_torque << ','
                    << c.crank * u::deg_per_rad << ','

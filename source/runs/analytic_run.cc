@@ -37,8 +37,9 @@ namespace cycloid
        * Whether the console shows the state of crank angle @p k of @p n_k
        * and torque @p t of @p n_t: all of a short run; of a long one, every
        * torque at about ten crank angles including the first and last, so
-       * every torque is seen while the run goes (a torque cycle: about
-       * twenty of its states).
+       * every torque is seen while the run goes (a torque cycle of more
+       * than 20 states: about twenty of them, at the first and the last
+       * crank angle).
        */
       bool
       print_state(const unsigned int k,
@@ -49,7 +50,8 @@ namespace cycloid
         if (n_k * n_t <= 20)
           return true;
         if (n_t > 20)
-          return t % (n_t / 20) == 0 || t + 1 == n_t;
+          return (k == 0 || k + 1 == n_k) &&
+                 (t % (n_t / 20) == 0 || t + 1 == n_t);
         return k % std::max(1u, n_k / 10) == 0 || k + 1 == n_k;
       }
     } // namespace
@@ -72,6 +74,8 @@ namespace cycloid
       options.discretised  = false;
       options.torque_cycle = settings.loading.torque_cycle;
       options.rated_torque = settings.loading.rated_torque;
+      options.lost_motion_fraction =
+        parameters::LoadingParameters::lost_motion_torque;
       postprocess::Report report(options, comm);
       // Every rank checked the geometry (so a bad prm fails everywhere
       // alike); only rank 0 computes and writes.

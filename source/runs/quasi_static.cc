@@ -47,6 +47,8 @@ namespace cycloid
       options.rotation_control = settings.loading.rotation_control;
       options.torque_cycle     = settings.loading.torque_cycle;
       options.rated_torque     = settings.loading.rated_torque;
+      options.lost_motion_fraction =
+        parameters::LoadingParameters::lost_motion_torque;
       return options;
     }
 

@@ -280,6 +280,7 @@ namespace cycloid
       if (time.last_step() < time.n_steps())
         pcout << "  stopped after step " << time.last_step()
               << " (Transient/Stop after step)" << std::endl;
+      report.finish(); // the most loaded pin and the files written
       scene.print_timing();
     }
 

@@ -406,7 +406,8 @@ namespace cycloid
           initialise_active_set(load);
           warm = true;
         }
-      warm_load                        = load;
+      if (load != 0) // a zero load has no side
+        warm_load = load;
       contact::ContactState result     = solve_state(load);
       unsigned int          iterations = result.iterations;
       unsigned long         linear     = result.linear_iterations;
@@ -486,6 +487,9 @@ namespace cycloid
           if (sign * pc.arm > 1e-9)
             takeup =
               std::min(takeup, std::max(pc.clearance, 0.) / std::abs(pc.arm));
+      AssertThrow(takeup < std::numeric_limits<double>::max(),
+                  dealii::ExcMessage("no pin can carry a torque of this sign "
+                                     "at this crank angle."));
       return takeup;
     }
 
@@ -667,6 +671,9 @@ namespace cycloid
     {
       contact->transfer_active_set(snapshot);
       warm = !snapshot.empty();
+      // The snapshot is of the same load at another crank angle: its side
+      // is right, whatever this scene solved last.
+      warm_load = 0;
     }
 
 

@@ -97,6 +97,9 @@ namespace cycloid
         bool torque_cycle = false;
         /** Rated torque of the cycle [N m]. */
         double rated_torque = 0;
+        /** Fraction of the rated torque at which the lost motion is read
+         * (catalogues: 3 %). */
+        double lost_motion_fraction = 0.03;
         /** Continue the files of a run being resumed instead of starting
          * them: truncate each to the size in @p resume_sizes (the sizes at
          * the checkpoint, in the order of files()), then append. */
