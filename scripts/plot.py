@@ -218,7 +218,9 @@ class Run:
         parts = [f"Run = {mode}"]
         if mode != "analytic" and "Scene/Dimension" in p:
             parts.append(f"{p['Scene/Dimension']}D")
-        discs = p.get("Scene/Number of discs") or self._count_discs()
+        discs = p.get("Scene/Number of discs")
+        if not discs or discs == "auto":
+            discs = self._count_discs()
         if discs:
             parts.append(f"{discs} disc" + ("s" if str(discs) != "1" else ""))
         if mode != "analytic" and "Scene/Pins" in p:

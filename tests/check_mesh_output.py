@@ -61,7 +61,8 @@ def exact_disc_area():
 def main(prm, dir1, dir2, exe=None):
     get = read_prm(prm)
     dim = int(get("Scene", "Dimension", "2"))
-    n_discs = int(get("Scene", "Number of discs", "2"))
+    discs = get("Scene", "Number of discs", "auto")
+    n_discs = (1 if dim == 2 else 2) if discs == "auto" else int(discs)
     housing = get("Scene", "Pin support", "axis") == "housing"
     check(open(f"{dir1}/mesh.csv").read() == open(f"{dir2}/mesh.csv").read(),
           "mesh.csv differs between 1 and 2 ranks")

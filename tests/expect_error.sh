@@ -8,6 +8,8 @@
 # On any number of ranks: no deal.II stack banner, no "TimerOutput ...
 # uncaught exception" notice and no timer table.
 # A "# expect on NP ranks: REGEX" line replaces REGEX for a run on NP ranks.
+# A "# env: NAME=VALUE" line sets that environment variable for the run
+# (e.g. CYCLOID_AVAILABLE_MEMORY_MB, the memory the cost check sees).
 # A "# block: PATH" line makes PATH (relative to WORKDIR) a directory before
 # the run, so that a file the run writes there cannot be opened (on rank 0
 # only: an error on one rank).
@@ -20,6 +22,7 @@ if [ -f "$prm" ]; then
   expect_np=$(sed -n "s/^# expect on $np ranks: //p" "$prm")
   [ -n "$expect_np" ] && expect=$expect_np
   for path in $(sed -n 's/^# block: //p' "$prm"); do mkdir -p "$path"; done
+  for kv in $(sed -n 's/^# env: //p' "$prm"); do export "$kv"; done
 else
   expect="cannot open the parameter file"
 fi

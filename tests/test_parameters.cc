@@ -8,7 +8,10 @@
 
 #include <cycloid/analytic/stage_model.h>
 #include <cycloid/app/all_parameters.h>
+#include <cycloid/app/ignored_entries.h>
 #include <cycloid/app/parameter_suggestions.h>
+#include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/stage/cost_estimate.h>
 
 #include <gtest/gtest.h>
 
@@ -47,6 +50,24 @@ namespace
   {
     return "subsection Geometry\n" + entries + "\nend\n";
   }
+
+  /** The parameters parsed from @p text (throws on a bad input). */
+  app::AllParameters
+  parsed(const std::string &text)
+  {
+    dealii::ParameterHandler prm;
+    app::AllParameters::declare_parameters(prm);
+    prm.parse_input_from_string(text);
+    app::AllParameters p;
+    p.parse_parameters(prm);
+    return p;
+  }
+
+  /** The other reducer of issue 15: rp = 75 mm, root radius 69.5 mm. */
+  const std::string other_reducer =
+    geometry_section("set Number of pins = 30\nset Pin radius = 4\n"
+                     "set Eccentricity = 1.5\nset Shortening coefficient = "
+                     "0.6\nset Tooth width = 12");
 } // namespace
 
 
@@ -205,4 +226,270 @@ TEST(Parameters, MisspelledLinesAreExplained)
   EXPECT_NE(declared.explain_line(file, 7).find("did you mean 'analytic'?"),
             std::string::npos);
   std::remove(file.c_str());
+}
+
+
+
+TEST(Parameters, AutoSizesOfTheSeedAreExactlyTodaysDefaults)
+{
+  const auto g = parsed("").geometry;
+  EXPECT_TRUE(g.automatic.bore_radius && g.automatic.crank_hole_radius &&
+              g.automatic.crank_hole_circle_radius &&
+              g.automatic.housing_thickness && g.automatic.n_teeth);
+  // Exactly, not nearly: every seed result stays as it was.
+  EXPECT_EQ(g.n_teeth, 39u);
+  EXPECT_EQ(g.bore_radius, 25.);
+  EXPECT_EQ(g.crank_hole_radius, 15.);
+  EXPECT_EQ(g.crank_hole_circle_radius, 65.);
+  EXPECT_EQ(g.housing_thickness, 15.);
+  // A number overrides auto.
+  const auto h = parsed(geometry_section("set Bore radius = 20")).geometry;
+  EXPECT_FALSE(h.automatic.bore_radius);
+  EXPECT_EQ(h.bore_radius, 20.);
+  EXPECT_NE(error_of(geometry_section("set Bore radius = wide")), "");
+}
+
+
+
+TEST(Parameters, AnotherReducerGetsAutoSizesThatFit)
+{
+  EXPECT_EQ(error_of(other_reducer), "");
+  const auto                      g = parsed(other_reducer).geometry;
+  const geometry::CycloidGeometry geo(g); // the geometry checks pass
+  EXPECT_EQ(g.n_teeth, 29u);
+  const double root  = 75. - 1.5 - 4.;
+  const double scale = root / (2.2 * 40 / 0.675 - 5.2);
+  EXPECT_NEAR(geo.root_radius(), root, 1e-12);
+  EXPECT_NEAR(g.bore_radius, 25. * scale, 1e-12);
+  EXPECT_NEAR(g.crank_hole_radius, 15. * scale, 1e-12);
+  EXPECT_NEAR(g.crank_hole_circle_radius, 65. * scale, 1e-12);
+  EXPECT_NEAR(g.housing_thickness, 10., 1e-12); // 2.5 rrp > 15 x 75/130.4
+  // Ligaments of a fifth of the root radius and more.
+  EXPECT_GT(g.crank_hole_circle_radius - g.crank_hole_radius - g.bore_radius,
+            0.19 * root);
+  EXPECT_GT(root - g.crank_hole_circle_radius - g.crank_hole_radius,
+            0.35 * root);
+}
+
+
+
+TEST(Parameters, ErrorsAboutDefaultsSaySoAndGiveWhatFits)
+{
+  // The auto crank holes against a bore set in the file.
+  const std::string bore = error_of(geometry_section("set Bore radius = 60"));
+  EXPECT_NE(bore.find("the default (auto) crank holes"), std::string::npos)
+    << bore;
+  EXPECT_NE(bore.find("Values that fit: Crank hole radius < 32.58 mm"),
+            std::string::npos)
+    << bore;
+  // Explicit crank holes: no "default", but the range.
+  const std::string holes = error_of(geometry_section(
+    "set Crank hole radius = 15\nset Crank hole circle radius = 115"));
+  EXPECT_EQ(holes.find("default"), std::string::npos) << holes;
+  EXPECT_NE(holes.find("Crank hole circle radius of 40 mm to 110.17 mm"),
+            std::string::npos)
+    << holes;
+  // A numeric default the file leaves alone: the pin radius of the seed
+  // on the small pin circle of another eccentricity (rp = 17.8 mm).
+  auto p                 = parsed(geometry_section("set Eccentricity = 0.3"));
+  p.geometry.set_in_file = std::set<std::string>{"Eccentricity"};
+  try
+    {
+      const geometry::CycloidGeometry geo(p.geometry);
+      ADD_FAILURE() << "pins of 3 mm on a 17.8 mm pin circle accepted";
+    }
+  catch (const dealii::ExceptionBase &e)
+    {
+      std::ostringstream info; // the message as printed, unwrapped
+      e.print_info(info);
+      const std::string what = info.str();
+      EXPECT_NE(what.find("Geometry/Pin radius (the default, not set in the "
+                          "parameter file): neighbouring pins overlap"),
+                std::string::npos)
+        << what;
+      EXPECT_NE(what.find("values that fit: Pin radius < 1.39 mm"),
+                std::string::npos)
+        << what;
+    }
+}
+
+
+
+TEST(Parameters, NumberOfDiscsAutoFollowsTheRun)
+{
+  const auto analytic = parsed("");
+  EXPECT_EQ(analytic.scene.n_discs, 2u);
+  EXPECT_TRUE(analytic.notes.empty());
+  const auto fe_2d = parsed("set Run = quasi-static");
+  EXPECT_EQ(fe_2d.scene.n_discs, 1u);
+  ASSERT_EQ(fe_2d.notes.size(), 1u);
+  EXPECT_EQ(fe_2d.notes[0], "2D FE: one disc (Scene/Number of discs = auto)");
+  EXPECT_EQ(parsed("set Run = mesh").scene.n_discs, 1u);
+  EXPECT_EQ(parsed("set Run = transient").scene.n_discs, 1u);
+  EXPECT_EQ(parsed(
+              "set Run = phase-sweep\nsubsection Scene\nset Dimension = 3\nend")
+              .scene.n_discs,
+            2u);
+  // An explicit 2 in 2D stays 2 (the mesh then refuses it).
+  EXPECT_EQ(parsed("set Run = quasi-static\nsubsection Scene\nset Number "
+                   "of discs = 2\nend")
+              .scene.n_discs,
+            2u);
+}
+
+
+
+TEST(Parameters, EveryRunModeTakesTheDefaults)
+{
+  for (const std::string mode : {"analytic",
+                                 "mesh",
+                                 "quasi-static",
+                                 "phase-sweep",
+                                 "transient",
+                                 "profile"})
+    {
+      const auto p = parsed("set Run = " + mode);
+      EXPECT_NO_THROW(analytic::StageModel(p.model_settings())) << mode;
+      EXPECT_NO_THROW(geometry::CycloidGeometry(p.mesh_settings().geometry))
+        << mode;
+      EXPECT_EQ(p.scene.n_discs, p.run.fe() ? 1u : 2u) << mode;
+    }
+}
+
+
+
+TEST(Parameters, IgnoredEntriesAreNamed)
+{
+  using Mode = parameters::RunParameters::Mode;
+  const std::map<std::string, std::string> control{
+    {"Loading/Control", "rotation"}};
+  EXPECT_EQ(app::ignored_entry_warnings({Mode::analytic, 2, false}, control),
+            std::vector<std::string>{
+              "warning: Loading/Control = rotation is ignored by Run = "
+              "analytic (the analytic model is torque-controlled)"});
+  EXPECT_TRUE(
+    app::ignored_entry_warnings({Mode::quasi_static, 2, false}, control)
+      .empty());
+  EXPECT_TRUE(
+    app::ignored_entry_warnings({Mode::analytic, 2, false}, {}).empty());
+
+  const auto count = [](const Mode         mode,
+                        const std::string &entry,
+                        const unsigned int dim    = 2,
+                        const bool         loaded = false) {
+    return app::ignored_entry_warnings({mode, dim, loaded}, {{entry, "1"}})
+      .size();
+  };
+  EXPECT_EQ(count(Mode::quasi_static, "Loading/Number of phases"), 1u);
+  EXPECT_EQ(count(Mode::phase_sweep, "Loading/Number of phases"), 0u);
+  EXPECT_EQ(count(Mode::transient, "Loading/Number of phases"), 1u);
+  EXPECT_EQ(count(Mode::transient, "Transient/Time step"), 0u);
+  EXPECT_EQ(count(Mode::quasi_static, "Transient/Time step"), 1u);
+  EXPECT_EQ(count(Mode::profile, "Mesh/Contact refinements"), 1u);
+  EXPECT_EQ(count(Mode::profile, "Geometry/Bore radius"), 0u);
+  EXPECT_EQ(count(Mode::profile, "Profile/Chord tolerance"), 0u);
+  EXPECT_EQ(count(Mode::analytic, "Profile/Chord tolerance"), 1u);
+  EXPECT_EQ(count(Mode::analytic, "Scene/Number of discs"), 0u);
+  EXPECT_EQ(count(Mode::analytic, "Scene/Pin support"), 1u);
+  EXPECT_EQ(count(Mode::mesh, "Loading/Torque"), 1u);
+  EXPECT_EQ(count(Mode::mesh, "Loading/Torque", 2, true), 0u);
+  EXPECT_EQ(count(Mode::mesh, "Loading/Crank angle"), 0u);
+  EXPECT_EQ(count(Mode::quasi_static, "Mesh/Axial layers per disc"), 1u);
+  EXPECT_EQ(count(Mode::quasi_static, "Mesh/Axial layers per disc", 3), 0u);
+  EXPECT_EQ(count(Mode::mesh, "Material/Disc Young's modulus"), 1u);
+  EXPECT_EQ(count(Mode::analytic, "Write solution"), 1u);
+  EXPECT_EQ(count(Mode::transient, "Write solution"), 0u);
+
+  // Every row of the table names declared entries.
+  dealii::ParameterHandler prm;
+  app::AllParameters::declare_parameters(prm);
+  std::ostringstream declared;
+  prm.print_parameters(declared, dealii::ParameterHandler::ShortPRM);
+  for (const std::string &entries : app::ignored_entry_table())
+    {
+      const auto        slash = entries.rfind('/');
+      const std::string name =
+        slash == std::string::npos ? entries : entries.substr(slash + 1);
+      const std::string key = name == "*" ?
+                                "subsection " + entries.substr(0, slash) :
+                                "set " + name + " ";
+      EXPECT_NE(declared.str().find(key), std::string::npos) << entries;
+    }
+}
+
+
+
+TEST(Parameters, EntriesSetInTheFileAreKnown)
+{
+  const std::string file = "test_parameters_set.prm";
+  std::ofstream(file) << "set Run = analytic # a comment\n"
+                         "subsection Geometry\n"
+                         "  set Bore radius = \\\n"
+                         "    20\n"
+                         "end\n"
+                         "subsection Loading\n"
+                         "  set Control = rotation\n"
+                         "end\n";
+  const auto set = app::entries_set_in(file);
+  EXPECT_EQ(set,
+            (std::map<std::string, std::string>{{"Run", "analytic"},
+                                                {"Geometry/Bore radius", "20"},
+                                                {"Loading/Control",
+                                                 "rotation"}}));
+  const auto p = app::AllParameters::read(file);
+  ASSERT_TRUE(p.geometry.set_in_file.has_value());
+  EXPECT_EQ(*p.geometry.set_in_file, std::set<std::string>{"Bore radius"});
+  EXPECT_TRUE(p.geometry.left_at_default("Pin radius"));
+  // Run = analytic is the default value: no warning would name it.
+  EXPECT_EQ(p.set_to_default, std::set<std::string>{"Run"});
+  std::remove(file.c_str());
+}
+
+
+
+TEST(Parameters, CostModelMatchesTheMeasuredRuns)
+{
+  // Rows of doc/ladder/ladder.csv, 2 ranks: DoFs, peak MB, state s.
+  const struct
+  {
+    unsigned int dim, discs;
+    double       dofs, mb, seconds, mb_tol, s_tol;
+  } runs[] = {
+    {2, 1, 175348, 770.9, 9.74, 0.05, 0.6},       // 2D elastic cr4
+    {3, 1, 351939, 2351.6, 84.06, 0.05, 0.1},     // 3D one disc c0.5 cr3
+    {3, 2, 2519019, 18296.6, 1406.1, 0.05, 0.25}, // 3D p25 ax1 cr3
+    {3, 2, 1503003, 10881.8, 828.2, 0.05, 0.15},  // p25 ax1 cr3 loaded
+  };
+  for (const auto &r : runs)
+    {
+      const auto e = stage::estimate_cost(
+        {r.dim,
+         r.discs,
+         static_cast<dealii::types::global_dof_index>(r.dofs),
+         1,
+         0,
+         2});
+      EXPECT_NEAR(e.memory_bytes / 1e6 / r.mb, 1., r.mb_tol) << r.dofs;
+      EXPECT_NEAR(e.seconds_per_state / r.seconds, 1., r.s_tol) << r.dofs;
+    }
+  const auto e = stage::estimate_cost({3, 2, 2519019, 1, 0, 2});
+  EXPECT_EQ(e.line().substr(0, 47),
+            "DoFs 2519019; estimated peak memory 18 GB (summ");
+  mesh::MeshParameters coarse;
+  coarse.contact_refinements = 3;
+  EXPECT_NO_THROW(stage::check_memory(e, 20e9, coarse));
+  try
+    {
+      stage::check_memory(e, 16e9, coarse);
+      ADD_FAILURE() << "18 GB accepted in 16 GB";
+    }
+  catch (const dealii::ExceptionBase &x)
+    {
+      std::ostringstream info;
+      x.print_info(info);
+      const std::string what = info.str();
+      EXPECT_NE(what.find("Reduce Mesh/Contact refinements (now 3)"),
+                std::string::npos)
+        << what;
+    }
 }

@@ -1,5 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/base/utilities.h>
+
 #include <cycloid/app/all_parameters.h>
 #include <cycloid/app/parameter_suggestions.h>
 
@@ -10,6 +12,24 @@ namespace cycloid
 {
   namespace app
   {
+    namespace
+    {
+      /** The value of entry @p path ("A/B/Entry") in @p prm. */
+      std::string
+      value_of(dealii::ParameterHandler &prm, const std::string &path)
+      {
+        const auto parts = dealii::Utilities::split_string_list(path, '/');
+        for (std::size_t i = 0; i + 1 < parts.size(); ++i)
+          prm.enter_subsection(parts[i]);
+        const std::string value = prm.get(parts.back());
+        for (std::size_t i = 0; i + 1 < parts.size(); ++i)
+          prm.leave_subsection();
+        return value;
+      }
+    } // namespace
+
+
+
     void
     AllParameters::declare_parameters(dealii::ParameterHandler &prm)
     {
@@ -40,6 +60,11 @@ namespace cycloid
       contact.parse_parameters(prm);
       transient.parse_parameters(prm);
       profile.parse_parameters(prm);
+      // Where the run mode and the dimension are both known.
+      notes.clear();
+      const std::string discs = scene.resolve_number_of_discs(run.fe());
+      if (!discs.empty())
+        notes.push_back(discs);
       AssertThrow(scene.pin_core_radius < geometry.pin_radius,
                   dealii::ExcMessage("Scene/Pin core radius must be smaller "
                                      "than Geometry/Pin radius."));
@@ -61,6 +86,16 @@ namespace cycloid
       parse_input_explained(prm, filename);
       AllParameters result;
       result.parse_parameters(prm);
+      result.set_in_file = entries_set_in(filename);
+      dealii::ParameterHandler defaults;
+      declare_parameters(defaults);
+      for (const auto &entry : result.set_in_file)
+        if (value_of(prm, entry.first) == value_of(defaults, entry.first))
+          result.set_to_default.insert(entry.first);
+      result.geometry.set_in_file.emplace();
+      for (const auto &entry : result.set_in_file)
+        if (entry.first.rfind("Geometry/", 0) == 0)
+          result.geometry.set_in_file->insert(entry.first.substr(9));
 
       // Every entry, not only those the file sets: a default that changes
       // in a later version does not change what the written file repeats.

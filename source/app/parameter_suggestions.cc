@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <map>
+#include <memory>
 #include <numeric>
 #include <regex>
 #include <sstream>
@@ -276,7 +278,16 @@ namespace cycloid
       const auto     i =
         std::find(s.entries.begin(), s.entries.end(), name) - s.entries.begin();
       const std::string &pattern = s.patterns[i];
-      const auto         check   = dealii::Patterns::pattern_factory(pattern);
+      // deal.II's factory knows its own patterns only (and throws for
+      // others, such as parameters::OrAuto): then the value is reported
+      // against the description.
+      std::unique_ptr<dealii::Patterns::PatternBase> check;
+      try
+        {
+          check = dealii::Patterns::pattern_factory(pattern);
+        }
+      catch (const dealii::ExceptionBase &)
+        {}
       if (check != nullptr && check->match(value))
         return "";
       const auto        values = selection_values(pattern);
@@ -305,32 +316,11 @@ namespace cycloid
     DeclaredParameters::explain_line(const std::string &filename,
                                      const unsigned int line_number) const
     {
-      // The same line handling as ParameterHandler::parse_input(): trimmed
-      // lines, a trailing '\' continues on the next line, whose logical
-      // line number is that of its first physical line.
-      std::ifstream            in(filename);
       std::vector<std::string> path;
-      std::string              physical, logical;
-      unsigned int             n = 0, logical_n = 0;
-      while (std::getline(in, physical))
+      for (const auto &[number, text] : logical_lines(filename))
         {
-          ++n;
-          if (logical.empty())
-            logical_n = n;
-          physical = dealii::Utilities::trim(physical);
-          if (!physical.empty() && physical.back() == '\\')
-            {
-              logical += physical.substr(0, physical.size() - 1);
-              continue;
-            }
-          std::string line = logical + physical;
-          logical.clear();
-          if (line.find('#') != std::string::npos)
-            line.erase(line.find('#'));
-          std::replace(line.begin(), line.end(), '\t', ' ');
-          line = dealii::Utilities::trim(line);
-
-          const bool here = logical_n == line_number;
+          std::string line = text;
+          const bool  here = number == line_number;
           if (take_keyword(line, "subsection"))
             {
               const Section *s = find(path);
@@ -362,10 +352,74 @@ namespace cycloid
                 return explain_unknown(name, path, false);
               return explain_value(name, value, path);
             }
-          if (logical_n >= line_number)
+          if (number >= line_number)
             return "";
         }
       return "";
+    }
+
+
+
+    std::vector<std::pair<unsigned int, std::string>>
+    logical_lines(const std::string &filename)
+    {
+      // The same line handling as ParameterHandler::parse_input(): trimmed
+      // lines, a trailing '\' continues on the next line, whose logical
+      // line number is that of its first physical line.
+      std::ifstream                                     in(filename);
+      std::vector<std::pair<unsigned int, std::string>> lines;
+      std::string                                       physical, logical;
+      unsigned int                                      n = 0, logical_n = 0;
+      while (std::getline(in, physical))
+        {
+          ++n;
+          if (logical.empty())
+            logical_n = n;
+          physical = dealii::Utilities::trim(physical);
+          if (!physical.empty() && physical.back() == '\\')
+            {
+              logical += physical.substr(0, physical.size() - 1);
+              continue;
+            }
+          std::string line = logical + physical;
+          logical.clear();
+          if (line.find('#') != std::string::npos)
+            line.erase(line.find('#'));
+          std::replace(line.begin(), line.end(), '\t', ' ');
+          lines.emplace_back(logical_n, dealii::Utilities::trim(line));
+        }
+      return lines;
+    }
+
+
+
+    std::map<std::string, std::string>
+    entries_set_in(const std::string &filename)
+    {
+      std::map<std::string, std::string> names;
+      std::vector<std::string>           path;
+      for (auto [number, line] : logical_lines(filename))
+        {
+          (void)number;
+          if (take_keyword(line, "subsection"))
+            path.push_back(line);
+          else if (line == "end" || line == "END")
+            {
+              if (!path.empty())
+                path.pop_back();
+            }
+          else if (take_keyword(line, "set") &&
+                   line.find('=') != std::string::npos)
+            {
+              std::string name;
+              for (const std::string &s : path)
+                name += s + "/";
+              const auto eq = line.find('=');
+              names[name + dealii::Utilities::trim(line.substr(0, eq))] =
+                dealii::Utilities::trim(line.substr(eq + 1));
+            }
+        }
+      return names;
     }
 
 

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cycloid/app/ignored_entries.h>
 #include <cycloid/app/run.h>
 #include <cycloid/runs/analytic_run.h>
 #include <cycloid/runs/mesh_run.h>
@@ -12,6 +13,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 
 namespace cycloid
 {
@@ -152,8 +154,29 @@ namespace cycloid
 
 
     void
+    announce_parameters(const AllParameters &prm, const MPI_Comm comm)
+    {
+      if (dealii::Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      for (const std::string &note : prm.notes)
+        std::cout << note << std::endl;
+      std::map<std::string, std::string> changed = prm.set_in_file;
+      for (const std::string &name : prm.set_to_default)
+        changed.erase(name);
+      for (const std::string &warning :
+           ignored_entry_warnings({prm.run.mode,
+                                   prm.scene.dimension,
+                                   prm.mesh.refine_loaded_side_only},
+                                  changed))
+        std::cerr << warning << std::endl;
+    }
+
+
+
+    void
     run(const AllParameters &prm, const MPI_Comm comm)
     {
+      announce_parameters(prm, comm);
       if (prm.run.mode == parameters::RunParameters::Mode::analytic)
         build_and_run<runs::AnalyticRun>(
           runs::AnalyticRun::Settings{prm.model_settings(),

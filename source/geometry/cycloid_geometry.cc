@@ -1,12 +1,15 @@
 #include <deal.II/base/exceptions.h>
 
 #include <deal.II/base/numbers.h>
+#include <deal.II/base/utilities.h>
 
 #include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/parameters/or_auto.h>
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -70,9 +73,10 @@ namespace cycloid
                           Integer(3, 1000),
                           "Number of pins zp [-].");
         prm.declare_entry("Number of cycloid teeth",
-                          "39",
-                          Integer(2, 999),
-                          "Number of cycloid teeth zc [-]; must be zp - 1.");
+                          "auto",
+                          parameters::OrAuto(Integer(2, 999)),
+                          "Number of cycloid teeth zc [-]; must be zp - 1. "
+                          "auto: zp - 1.");
         prm.declare_entry("Pin radius", "3", Double(0), "Pin radius rrp [mm].");
         prm.declare_entry("Eccentricity",
                           "2.2",
@@ -108,35 +112,47 @@ namespace cycloid
                           "Profile modification delta [degrees]: the profile "
                           "is turned clockwise by delta in the disc frame "
                           "(the seed's sign convention).");
-        prm.declare_entry("Bore radius",
-                          "25",
-                          Double(0),
-                          "Radius of the disc's central bore [mm].");
+        prm.declare_entry(
+          "Bore radius",
+          "auto",
+          parameters::OrAuto(Double(0)),
+          "Radius of the disc's central bore [mm], > 0 and below the root "
+          "radius. auto: 25 mm x (rp - e - rrp) / 125.170 mm, the seed's bore "
+          "scaled by the ratio of the root radii (rp = e zp / K1); 25 mm for "
+          "the seed geometry.");
         prm.declare_entry("Number of crank holes",
                           "3",
                           Integer(0, 12),
                           "Number of crank-shaft holes per disc [-] "
                           "(0 allowed).");
-        prm.declare_entry("Crank hole radius",
-                          "15",
-                          Double(0),
-                          "Radius of each crank-shaft hole [mm].");
+        prm.declare_entry(
+          "Crank hole radius",
+          "auto",
+          parameters::OrAuto(Double(0)),
+          "Radius of each crank-shaft hole [mm], > 0; the holes must lie "
+          "between the bore and the root circle and must not overlap. auto: "
+          "15 mm x (rp - e - rrp) / 125.170 mm (15 mm for the seed).");
         prm.declare_entry(
           "Crank hole circle radius",
-          "65",
-          Double(0),
-          "Radius of the circle through the crank-hole centres [mm].");
+          "auto",
+          parameters::OrAuto(Double(0)),
+          "Radius of the circle through the crank-hole centres [mm], "
+          "between Bore radius + Crank hole radius and the root radius - "
+          "Crank hole radius. auto: 65 mm x (rp - e - rrp) / 125.170 mm "
+          "(65 mm for the seed).");
         prm.declare_entry("Axial gap between discs",
                           "2",
                           Double(0),
                           "Axial gap between the two discs of a 3D scene "
                           "[mm].");
-        prm.declare_entry("Housing wall thickness",
-                          "15",
-                          Double(0),
-                          "Radial wall thickness of the pin housing outside "
-                          "the pin circle [mm]; the housing ring spans rp to "
-                          "rp + this, with a groove of radius rrp per pin.");
+        prm.declare_entry(
+          "Housing wall thickness",
+          "auto",
+          parameters::OrAuto(Double(0)),
+          "Radial wall thickness of the pin housing outside the pin circle "
+          "[mm], > 1.5 rrp; the housing ring spans rp to rp + this, with a "
+          "groove of radius rrp per pin. auto: 15 mm x rp / 130.370 mm, at "
+          "least 2.5 rrp (15 mm for the seed).");
       }
       prm.leave_subsection();
     }
@@ -149,7 +165,6 @@ namespace cycloid
       prm.enter_subsection("Geometry");
       {
         n_pins                 = prm.get_integer("Number of pins");
-        n_teeth                = prm.get_integer("Number of cycloid teeth");
         pin_radius             = prm.get_double("Pin radius");
         eccentricity           = prm.get_double("Eccentricity");
         shortening_coefficient = prm.get_double("Shortening coefficient");
@@ -159,14 +174,65 @@ namespace cycloid
         delta_pin_radius = prm.get_double("Pin radius modification");
         rotation_modification_rad =
           prm.get_double("Rotation modification") * pi / 180.;
-        bore_radius              = prm.get_double("Bore radius");
-        n_crank_holes            = prm.get_integer("Number of crank holes");
-        crank_hole_radius        = prm.get_double("Crank hole radius");
-        crank_hole_circle_radius = prm.get_double("Crank hole circle radius");
-        axial_gap                = prm.get_double("Axial gap between discs");
-        housing_thickness        = prm.get_double("Housing wall thickness");
+        n_crank_holes = prm.get_integer("Number of crank holes");
+        axial_gap     = prm.get_double("Axial gap between discs");
+        // An auto entry is flagged here and sized by apply_auto_sizes().
+        const auto read = [&prm](const std::string &name, double &value) {
+          const std::string text = prm.get(name);
+          if (parameters::is_auto(text))
+            return true;
+          value = dealii::Utilities::string_to_double(text);
+          return false;
+        };
+        double zc             = n_teeth;
+        automatic.n_teeth     = read("Number of cycloid teeth", zc);
+        n_teeth               = static_cast<unsigned int>(zc);
+        automatic.bore_radius = read("Bore radius", bore_radius);
+        automatic.crank_hole_radius =
+          read("Crank hole radius", crank_hole_radius);
+        automatic.crank_hole_circle_radius =
+          read("Crank hole circle radius", crank_hole_circle_radius);
+        automatic.housing_thickness =
+          read("Housing wall thickness", housing_thickness);
       }
       prm.leave_subsection();
+      apply_auto_sizes();
+    }
+
+
+
+    void
+    GeometryParameters::apply_auto_sizes()
+    {
+      // The seed's tooth geometry, the reference of the scaling. Both
+      // radii are computed by the same expressions as for the parameters,
+      // so the ratios are exactly 1 for the seed.
+      const auto   pin_circle = [](const double e,
+                                 const double z,
+                                 const double k1) { return e * z / k1; };
+      const double seed_rp    = pin_circle(2.2, 40, 0.675);
+      const double seed_root  = seed_rp - 2.2 - 3.0;
+      const double rp =
+        pin_circle(eccentricity, n_pins, shortening_coefficient);
+      const double root_scale = (rp - eccentricity - pin_radius) / seed_root;
+      if (automatic.n_teeth)
+        n_teeth = n_pins - 1;
+      if (automatic.bore_radius)
+        bore_radius = 25. * root_scale;
+      if (automatic.crank_hole_radius)
+        crank_hole_radius = 15. * root_scale;
+      if (automatic.crank_hole_circle_radius)
+        crank_hole_circle_radius = 65. * root_scale;
+      if (automatic.housing_thickness)
+        housing_thickness = std::max(15. * (rp / seed_rp), 2.5 * pin_radius);
+    }
+
+
+
+    bool
+    GeometryParameters::left_at_default(const std::string &name) const
+    {
+      return set_in_file.has_value() && set_in_file->count(name) == 0;
     }
 
 
@@ -194,12 +260,70 @@ namespace cycloid
 
     namespace
     {
+      /** "Geometry/@p name", with what kind of default its value is if the
+       * file does not set it ("(auto, the default)" for an auto entry
+       * @p is_auto). */
+      std::string
+      entry(const GeometryParameters &prm,
+            const std::string        &name,
+            const bool                is_auto = false)
+      {
+        return "Geometry/" + name +
+               (is_auto                   ? " (auto, the default)" :
+                prm.left_at_default(name) ? " (the default, not set in "
+                                            "the parameter file)" :
+                                            "");
+      }
+
+
+
+      /** @p x [mm] rounded to 0.01 mm towards the inside of a bound:
+       * down for an upper bound (@p upper), up for a lower one. */
+      std::string
+      mm(const double x, const bool upper)
+      {
+        const double r =
+          (upper ? std::floor(x * 100.) : std::ceil(x * 100.)) / 100.;
+        std::ostringstream s;
+        s << r << " mm";
+        return s.str();
+      }
+
+
+
+      /** @p x [mm] for a message. */
+      std::string
+      mm(const double x)
+      {
+        std::ostringstream s;
+        s << std::setprecision(6) << x << " mm";
+        return s.str();
+      }
+
+
+
+      /** @p prm with every auto entry at auto: the sizes that fit its
+       * tooth geometry. */
+      GeometryParameters
+      auto_sizes(const GeometryParameters &prm)
+      {
+        GeometryParameters a = prm;
+        a.automatic          = {true, true, true, true, true};
+        a.apply_auto_sizes();
+        return a;
+      }
+
+
+
       /** Throw naming Geometry/@p name unless @p value is positive. */
       void
-      require_positive(const double value, const char *name)
+      require_positive(const GeometryParameters &prm,
+                       const double              value,
+                       const char               *name,
+                       const bool                is_auto = false)
       {
         AssertThrow(value > 0,
-                    dealii::ExcMessage(std::string("Geometry/") + name +
+                    dealii::ExcMessage(entry(prm, name, is_auto) +
                                        " must be positive, got " +
                                        std::to_string(value) + "."));
       }
@@ -212,21 +336,26 @@ namespace cycloid
       check_inputs(const GeometryParameters &prm)
       {
         using dealii::ExcMessage;
-        require_positive(prm.pin_radius, "Pin radius");
-        require_positive(prm.eccentricity, "Eccentricity");
-        require_positive(prm.tooth_width, "Tooth width");
-        require_positive(prm.bore_radius, "Bore radius");
+        require_positive(prm, prm.pin_radius, "Pin radius");
+        require_positive(prm, prm.eccentricity, "Eccentricity");
+        require_positive(prm, prm.tooth_width, "Tooth width");
         AssertThrow(prm.shortening_coefficient > 0 &&
                       prm.shortening_coefficient < 1,
-                    ExcMessage("Geometry/Shortening coefficient K1 must lie in "
-                               "(0, 1), got " +
+                    ExcMessage(entry(prm, "Shortening coefficient") +
+                               " K1 must lie in (0, 1), got " +
                                std::to_string(prm.shortening_coefficient) +
                                "."));
+        require_positive(prm,
+                         prm.bore_radius,
+                         "Bore radius",
+                         prm.automatic.bore_radius);
         AssertThrow(prm.n_teeth + 1 == prm.n_pins,
-                    ExcMessage("Geometry/Number of cycloid teeth must equal "
-                               "Number of pins - 1 (zc = zp - 1), got zp = " +
-                               std::to_string(prm.n_pins) +
-                               ", zc = " + std::to_string(prm.n_teeth) + "."));
+                    ExcMessage(entry(prm, "Number of cycloid teeth") +
+                               " must equal Number of pins - 1 (zc = zp - "
+                               "1), got zp = " +
+                               std::to_string(prm.n_pins) + ", zc = " +
+                               std::to_string(prm.n_teeth) + "; set it to " +
+                               std::to_string(prm.n_pins - 1) + " or auto."));
       }
 
 
@@ -262,11 +391,13 @@ namespace cycloid
         // Neighbouring pins must not overlap: chord 2 rp sin(pi/zp) > 2 rrp.
         const double chord = 2. * rp * std::sin(pi / zp);
         AssertThrow(2. * prm.pin_radius < chord,
-                    ExcMessage("Geometry/Pin radius: neighbouring pins overlap "
-                               "(2 rrp = " +
+                    ExcMessage(entry(prm, "Pin radius") +
+                               ": neighbouring pins overlap (2 rrp = " +
                                std::to_string(2. * prm.pin_radius) +
                                " mm >= pin spacing 2 rp sin(pi/zp) = " +
-                               std::to_string(chord) + " mm)."));
+                               std::to_string(chord) +
+                               " mm); values that fit: Pin radius < " +
+                               mm(0.5 * chord, true) + "."));
       }
 
 
@@ -341,11 +472,93 @@ namespace cycloid
       void
       check_housing(const GeometryParameters &prm)
       {
-        using dealii::ExcMessage;
-        AssertThrow(prm.housing_thickness > 1.5 * prm.pin_radius,
-                    ExcMessage(
-                      "Geometry/Housing wall thickness must exceed 1.5 "
-                      "Pin radius so that the grooves leave a wall."));
+        const double least = 1.5 * prm.pin_radius;
+        AssertThrow(prm.housing_thickness > least,
+                    dealii::ExcMessage(
+                      entry(prm,
+                            "Housing wall thickness",
+                            prm.automatic.housing_thickness) +
+                      " must exceed 1.5 Pin radius = " + mm(least) +
+                      " so that the grooves leave a wall, got " +
+                      mm(prm.housing_thickness) +
+                      "; values that fit: Housing wall thickness > " +
+                      mm(least, false) + " (auto gives " +
+                      mm(auto_sizes(prm).housing_thickness) + ")."));
+      }
+
+
+
+      /** The crank holes that fit between the bore and the root circle
+       * @p root of @p prm, as the end of a message: the largest hole
+       * radius, and the circle radii that fit for the present radius (or,
+       * if that is too large, for three quarters of the largest). */
+      std::string
+      fitting_crank_holes(const GeometryParameters &prm, const double root)
+      {
+        const unsigned int n  = prm.n_crank_holes;
+        const double       rb = prm.bore_radius;
+        // Between bore and root: r < (root - rb) / 2. Apart from each
+        // other: r < c sin(pi/n), most room on the largest circle
+        // c = root - r, so r < root s / (1 + s).
+        const double s = n > 1 ? std::sin(pi / n) : 1.;
+        const double r_max =
+          std::min(0.5 * (root - rb), n > 1 ? root * s / (1. + s) : root);
+        if (r_max <= 0)
+          return "none: Bore radius = " + mm(rb) +
+                 " leaves no room inside the root radius " + mm(root) +
+                 "; reduce Bore radius or set Number of crank holes = 0.";
+        const double r =
+          prm.crank_hole_radius < r_max ? prm.crank_hole_radius : 0.75 * r_max;
+        const double       c_lo = std::max(rb + r, n > 1 ? r / s : 0.);
+        const double       c_hi = root - r;
+        std::ostringstream text;
+        text << "Crank hole radius < " << mm(r_max, true)
+             << " (with Bore radius = " << mm(rb)
+             << "); Crank hole radius = " << mm(r)
+             << " on a Crank hole circle radius of " << mm(c_lo, false)
+             << " to " << mm(c_hi, true) << ".";
+        return text.str();
+      }
+
+
+
+      /** The crank holes of @p prm fit between the bore and the root
+       * circle @p root and do not overlap. Throws dealii::ExcMessage. */
+      void
+      check_crank_holes(const GeometryParameters &prm, const double root)
+      {
+        const auto  &a  = prm.automatic;
+        const double r  = prm.crank_hole_radius;
+        const double c  = prm.crank_hole_circle_radius;
+        const double rb = prm.bore_radius;
+        require_positive(prm, r, "Crank hole radius", a.crank_hole_radius);
+        require_positive(prm,
+                         c,
+                         "Crank hole circle radius",
+                         a.crank_hole_circle_radius);
+        const unsigned int n = prm.n_crank_holes;
+        const std::string  problem =
+          !(c - r > rb) ?
+             "cut into the bore (" + entry(prm, "Bore radius", a.bore_radius) +
+              " = " + mm(rb) + ")" :
+           !(c + r < root) ?
+             "cut the tooth root (root radius " + mm(root) + ")" :
+           n > 1 && !(r < c * std::sin(pi / n)) ?
+             "overlap: neighbouring crank holes cut into each "
+             "other" :
+             "";
+        if (problem.empty())
+          return;
+        const bool is_auto = a.crank_hole_radius || a.crank_hole_circle_radius;
+        std::ostringstream msg;
+        msg << "Geometry/Crank hole radius and Crank hole circle radius: "
+            << (is_auto ? "the default (auto) crank holes" : "the crank holes")
+            << " (radius " << mm(r) << (a.crank_hole_radius ? ", auto" : "")
+            << ", on a circle of " << mm(c)
+            << (a.crank_hole_circle_radius ? ", auto" : "") << ") " << problem
+            << (is_auto ? "; they do not fit this reducer" : "")
+            << ". Values that fit: " << fitting_crank_holes(prm, root);
+        AssertThrow(false, dealii::ExcMessage(msg.str()));
       }
 
 
@@ -355,36 +568,19 @@ namespace cycloid
       void
       check_holes(const GeometryParameters &prm, const double root)
       {
-        using dealii::ExcMessage;
-        // Bore and crank holes must fit inside the root circle.
-        AssertThrow(prm.bore_radius < root,
-                    ExcMessage("Geometry/Bore radius " +
-                               std::to_string(prm.bore_radius) +
-                               " mm does not fit inside the root radius " +
-                               std::to_string(root) + " mm."));
+        const bool is_auto = prm.automatic.bore_radius;
+        AssertThrow(
+          prm.bore_radius < root,
+          dealii::ExcMessage(
+            entry(prm, "Bore radius", is_auto) + " = " + mm(prm.bore_radius) +
+            " does not fit inside the root radius " + mm(root) +
+            (is_auto ? "; the auto bore does not fit this reducer" : "") +
+            ". Values that fit: Bore radius < " + mm(root, true) +
+            (is_auto ? std::string() :
+                       " (auto: " + mm(auto_sizes(prm).bore_radius) + ")") +
+            "."));
         if (prm.n_crank_holes > 0)
-          {
-            require_positive(prm.crank_hole_radius, "Crank hole radius");
-            require_positive(prm.crank_hole_circle_radius,
-                             "Crank hole circle radius");
-            AssertThrow(prm.crank_hole_circle_radius - prm.crank_hole_radius >
-                          prm.bore_radius,
-                        ExcMessage("Geometry/Crank hole radius and Crank hole "
-                                   "circle radius: the crank holes cut into "
-                                   "the bore."));
-            AssertThrow(prm.crank_hole_circle_radius + prm.crank_hole_radius <
-                          root,
-                        ExcMessage("Geometry/Crank hole radius and Crank hole "
-                                   "circle radius: the crank holes cut the "
-                                   "tooth root (root radius " +
-                                   std::to_string(root) + " mm)."));
-            if (prm.n_crank_holes > 1)
-              AssertThrow(prm.crank_hole_radius <
-                            prm.crank_hole_circle_radius *
-                              std::sin(pi / prm.n_crank_holes),
-                          ExcMessage("Geometry/Crank hole radius: neighbouring "
-                                     "crank holes overlap."));
-          }
+          check_crank_holes(prm, root);
       }
     } // namespace
 

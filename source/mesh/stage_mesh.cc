@@ -85,8 +85,9 @@ namespace cycloid
       AssertThrow(dim == 3 || settings.scene.n_discs == 1,
                   dealii::ExcMessage(
                     "Scene: a 2D (plane-strain) FE scene models one disc; set "
-                    "Scene/Number of discs = 1 (its forces and K are for that "
-                    "disc), or Scene/Dimension = 3 for the two-disc stage."));
+                    "Scene/Number of discs = 1 or auto (the default, which is "
+                    "1 in a 2D FE run; forces and K are for that disc), or "
+                    "Scene/Dimension = 3 for the two-disc stage."));
       const MPI_Comm                  comm = communicator_of(tria);
       const geometry::CycloidGeometry geo(settings.geometry);
       const double                    psi = request.crank_angle;

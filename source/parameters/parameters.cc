@@ -251,10 +251,13 @@ namespace cycloid
                           "Spatial dimension of an FE scene: 2 (plane strain, "
                           "results scaled to the tooth width) or 3.");
         prm.declare_entry("Number of discs",
-                          "2",
-                          Integer(1, 2),
+                          "auto",
+                          Selection("auto|1|2"),
                           "Number of cycloid discs: 2 (the RV stage, discs "
-                          "half a turn apart) or 1.");
+                          "half a turn apart), 1, or auto: 1 in a 2D FE run "
+                          "(mesh, quasi-static, phase-sweep, transient; plane "
+                          "strain models one disc), 2 otherwise (the "
+                          "analytical model, 3D scenes).");
         prm.declare_entry("Pins",
                           "elastic",
                           Selection("elastic|rigid"),
@@ -287,8 +290,9 @@ namespace cycloid
     {
       prm.enter_subsection("Scene");
       {
-        dimension = prm.get_integer("Dimension");
-        n_discs   = prm.get_integer("Number of discs");
+        dimension    = prm.get_integer("Dimension");
+        n_discs_auto = prm.get("Number of discs") == "auto";
+        n_discs      = n_discs_auto ? 2 : prm.get_integer("Number of discs");
         pins = prm.get("Pins") == "rigid" ? PinModel::rigid : PinModel::elastic;
         pin_support       = prm.get("Pin support") == "housing" ?
                               PinSupport::housing :
@@ -299,6 +303,17 @@ namespace cycloid
                               LoadIntroduction::crank_holes;
       }
       prm.leave_subsection();
+    }
+
+
+
+    std::string
+    SceneParameters::resolve_number_of_discs(const bool fe_run)
+    {
+      if (!n_discs_auto || !fe_run || dimension != 2)
+        return "";
+      n_discs = 1;
+      return "2D FE: one disc (Scene/Number of discs = auto)";
     }
 
 

@@ -84,7 +84,9 @@ namespace cycloid
       const auto               &geo = model.geometry();
       const std::vector<double> angles =
         settings.loading.crank_angles(geo.mesh_period());
-      const std::vector<double> torques  = settings.loading.load_values();
+      // Not load_values(): Control = rotation is for FE runs (a warning
+      // names it, app/ignored_entries.h).
+      const std::vector<double> torques  = settings.loading.torque_values();
       const unsigned int        n_states = angles.size() * torques.size();
       std::cout << "cycloid-contact: analytic model '"
                 << model.pair_model().name()

@@ -4,11 +4,15 @@
 #include <deal.II/base/numbers.h>
 
 #include <deal.II/distributed/shared_tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
 
 #include <cycloid/mesh/stage_mesh.h>
 #include <cycloid/postprocess/mesh_output.h>
 #include <cycloid/results/stage_state.h>
 #include <cycloid/runs/mesh_run.h>
+#include <cycloid/stage/cost_estimate.h>
 
 #include <chrono>
 #include <fstream>
@@ -25,6 +29,41 @@ namespace cycloid
       : settings(settings)
       , comm(comm)
     {}
+
+
+
+    namespace
+    {
+      /** The cost estimate of an FE run on @p tria (its DoFs with the
+       * scene's elements), and whether it would fit into the memory. */
+      template <int dim>
+      std::string
+      cost_line(const mesh::MeshSettings                           &settings,
+                const dealii::parallel::shared::Triangulation<dim> &tria,
+                const MPI_Comm                                      comm)
+      {
+        const dealii::FESystem<dim> fe(dealii::FE_Q<dim>(settings.mesh.degree),
+                                       dim);
+        dealii::DoFHandler<dim>     dofs(tria);
+        dofs.distribute_dofs(fe);
+        const auto estimate =
+          stage::estimate_cost({dim,
+                                settings.scene.n_discs,
+                                dofs.n_dofs(),
+                                settings.mesh.degree,
+                                settings.mesh.adaptive_cycles,
+                                dealii::Utilities::MPI::n_mpi_processes(comm)});
+        const double available = stage::available_memory_bytes(comm);
+        // A mesh run allocates no matrix: it warns where an FE run stops.
+        return "  FE run on this mesh: " + estimate.line() +
+               (estimate.memory_bytes > available ?
+                  "\nwarning: an FE run on this mesh would not fit into the "
+                  "available memory (" +
+                    std::to_string(static_cast<long>(available / 1e6)) +
+                    " MB); it would stop before the solve" :
+                  "");
+      }
+    } // namespace
 
 
 
@@ -49,7 +88,8 @@ namespace cycloid
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
 
-      const auto stats = mesh::body_statistics(tria);
+      const std::string cost  = cost_line(settings.mesh, tria, comm);
+      const auto        stats = mesh::body_statistics(tria);
       postprocess::write_mesh_vtu(tria, dir, "mesh", comm);
 
       std::ostringstream table;
@@ -116,7 +156,8 @@ namespace cycloid
                     << worst_cell << "), max aspect ratio " << max_aspect
                     << "\n  generated in " << seconds << " s; written " << dir
                     << "/mesh.pvtu, "
-                    << "mesh_boundary.pvtu, mesh.csv" << std::endl;
+                    << "mesh_boundary.pvtu, mesh.csv\n"
+                    << cost << std::endl;
         }
       AssertThrow(
         worst_jacobian > 1e-3,

@@ -10,6 +10,7 @@
 #include <cycloid/analytic/pair_stiffness.h>
 #include <cycloid/elasticity/support_points.h>
 #include <cycloid/postprocess/report.h>
+#include <cycloid/stage/cost_estimate.h>
 #include <cycloid/stage/stage_scene.h>
 
 #include <algorithm>
@@ -114,6 +115,7 @@ namespace cycloid
       make_grid(request);
       setup_contact();
       setup_system();
+      announce_cost();
       compute_rotation_field();
     }
 
@@ -254,6 +256,25 @@ namespace cycloid
                   ", " + std::to_string(contact->tied_nodes().size()) +
                     " seat nodes glued to the pins")
             << std::endl;
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::announce_cost() const
+    {
+      // The DoFs exist, the matrices not yet (they are allocated at the
+      // first solve): the last moment to stop a run that cannot fit.
+      const auto estimate =
+        estimate_cost({dim,
+                       settings.scene.n_discs,
+                       contact->elasticity().n_dofs(),
+                       settings.mesh.degree,
+                       settings.mesh.adaptive_cycles,
+                       dealii::Utilities::MPI::n_mpi_processes(comm)});
+      pcout << "  " << estimate.line() << std::endl;
+      check_memory(estimate, available_memory_bytes(comm), settings.mesh);
     }
 
 

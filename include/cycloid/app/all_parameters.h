@@ -16,7 +16,10 @@
 #include <cycloid/parameters/scene.h>
 #include <cycloid/profile/profile_parameters.h>
 
+#include <map>
+#include <set>
 #include <string>
+#include <vector>
 
 namespace cycloid
 {
@@ -53,11 +56,32 @@ namespace cycloid
        */
       std::string parameter_file;
 
+      /**
+       * The entries the parameter file sets, as "Subsection/Entry" (or
+       * "Entry" at the top level) with their values as written: read()
+       * fills it, so that a run can name
+       * the entries its mode ignores (app/ignored_entries.h) and an error
+       * about a value left at its default can say so. Empty if the set was
+       * not made by read().
+       */
+      std::map<std::string, std::string> set_in_file;
+
+      /** The entries of set_in_file whose value equals the declared
+       * default (a written parameters.prm sets every entry): setting an
+       * ignored entry to its default changes nothing, so no warning names
+       * it. */
+      std::set<std::string> set_to_default;
+
+      /** What the parameters resolved on their own, for the run's first
+       * console lines ("2D FE: one disc (Scene/Number of discs = auto)"). */
+      std::vector<std::string> notes;
+
       /** Declare every subsection. */
       static void
       declare_parameters(dealii::ParameterHandler &prm);
 
-      /** Parse every subsection from an already read handler. */
+      /** Parse every subsection from an already read handler, and resolve
+       * the `auto` entries that depend on the run mode (notes). */
       void
       parse_parameters(dealii::ParameterHandler &prm);
 

@@ -3,7 +3,9 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <boost/property_tree/ptree_fwd.hpp>
@@ -111,6 +113,27 @@ namespace cycloid
     void
     parse_input_explained(dealii::ParameterHandler &prm,
                           const std::string        &filename);
+
+    /**
+     * The logical lines of the parameter file @p filename as
+     * ParameterHandler::parse_input() reads them: trimmed, without
+     * comments, tabs as spaces, a line ending in a backslash joined with the
+     * next; each with the number of its first physical line.
+     */
+    std::vector<std::pair<unsigned int, std::string>>
+    logical_lines(const std::string &filename);
+
+    /**
+     * The entries that the parameter file @p filename sets, as
+     * "Subsection/Entry" ("Entry" at the top level, "A/B/Entry" in a
+     * nested subsection), each with its value as written (the last one if
+     * the file sets an entry twice). deal.II's ParameterHandler does not tell
+     * whether a value came from the file or is the default; this walks the
+     * file's `subsection`, `end` and `set` lines (a file that parse_input()
+     * accepted, so every name is declared).
+     */
+    std::map<std::string, std::string>
+    entries_set_in(const std::string &filename);
   } // namespace app
 } // namespace cycloid
 

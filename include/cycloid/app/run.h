@@ -15,9 +15,17 @@ namespace cycloid
    */
   namespace app
   {
-    /** Run the mode selected by `Run` in @p parameters on @p comm. */
+    /** Run the mode selected by `Run` in @p parameters on @p comm, after
+     * announce_parameters(). */
     void
     run(const AllParameters &parameters, const MPI_Comm comm);
+
+    /** On rank 0 of @p comm: print what @p parameters resolved on their
+     * own (AllParameters::notes, stdout) and a warning line for every
+     * entry the file sets that the run mode ignores (stderr,
+     * ignored_entry_warnings()). */
+    void
+    announce_parameters(const AllParameters &parameters, const MPI_Comm comm);
 
     /** Create @p directory on rank 0 (collective; throws naming it if it
      * cannot be made). */

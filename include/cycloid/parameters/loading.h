@@ -56,6 +56,15 @@ namespace cycloid
       static int
       zero_side(const std::vector<double> &loads, const unsigned int i);
 
+      /** The torques of the states [N m] whatever Control says (the Torque
+       * list or the torque cycle): the analytical model is torque-controlled
+       * and ignores Control and Rotation. */
+      std::vector<double>
+      torque_values() const
+      {
+        return torque_cycle ? cycle_torques() : torques;
+      }
+
       /** The load values of the states: torques [N m] (the Torque list or
        * the torque cycle), or rotations [rad] under rotation control. */
       std::vector<double>

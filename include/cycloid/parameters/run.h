@@ -34,6 +34,14 @@ namespace cycloid
       /** Write the VTU fields of every FE state. */
       bool write_solution = true;
 
+      /** Whether the run mode is an FE run (mesh, quasi-static,
+       * phase-sweep, transient). */
+      bool
+      fe() const
+      {
+        return mode != Mode::analytic && mode != Mode::profile;
+      }
+
       /** Declare the top-level entries. */
       static void
       declare_parameters(dealii::ParameterHandler &prm);

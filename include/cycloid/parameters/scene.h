@@ -13,7 +13,9 @@ namespace cycloid
      * @brief The scene: how much of the stage is modelled and how
      * (subsection `Scene`). "Model no more than a scene needs": the
      * analytical model uses Number of discs, Pins and Load introduction;
-     * the FE scenes use all entries.
+     * the FE scenes use all entries. `Number of discs = auto` (the default)
+     * is resolved by resolve_number_of_discs(), where the run mode is
+     * known.
      */
     struct SceneParameters
     {
@@ -41,6 +43,9 @@ namespace cycloid
       /** Number of cycloid discs (1 or 2; an RV stage has 2, half a turn
        * apart). */
       unsigned int n_discs = 2;
+      /** Whether the file leaves Number of discs at `auto` (then n_discs
+       * is 2 until resolve_number_of_discs()). */
+      bool n_discs_auto = false;
       /** Elastic or rigid pins. */
       PinModel pins = PinModel::elastic;
       /** Pin support. */
@@ -57,6 +62,17 @@ namespace cycloid
       /** Read subsection `Scene`. */
       void
       parse_parameters(dealii::ParameterHandler &prm);
+
+      /**
+       * Resolve `Number of discs = auto` for a run that is an FE run
+       * (@p fe_run: mesh, quasi-static, phase-sweep, transient) or not:
+       * a 2D FE scene models one disc (plane strain has no second disc
+       * beside the first), every other run the stage's two. Returns the
+       * note the run prints ("2D FE: one disc (Scene/Number of discs =
+       * auto)"), or "" if nothing was resolved to other than 2.
+       */
+      std::string
+      resolve_number_of_discs(const bool fe_run);
     };
   } // namespace parameters
 } // namespace cycloid

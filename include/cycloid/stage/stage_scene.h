@@ -232,6 +232,10 @@ namespace cycloid
       setup_contact();
       void
       setup_system();
+      /** Print the cost estimate of the scene (stage/cost_estimate.h) and
+       * stop if it does not fit into the available memory. */
+      void
+      announce_cost() const;
       contact::ContactState
       solve_state(const double load);
       void

@@ -1,0 +1,83 @@
+#ifndef cycloid_stage_cost_estimate_h
+#define cycloid_stage_cost_estimate_h
+
+#include <deal.II/base/types.h>
+
+#include <cycloid/mesh/mesh_parameters.h>
+
+#include <string>
+
+#include <mpi.h>
+
+namespace cycloid
+{
+  namespace stage
+  {
+    /** What the cost of an FE scene depends on. */
+    struct CostInputs
+    {
+      unsigned int                    dimension = 2; ///< Scene/Dimension.
+      unsigned int                    n_discs   = 1; ///< Discs in the scene.
+      dealii::types::global_dof_index n_dofs = 0; ///< DoFs of the first mesh.
+      unsigned int                    degree = 1; ///< Mesh/Polynomial degree.
+      unsigned int adaptive_cycles = 0; ///< Mesh/Adaptive refinement cycles.
+      unsigned int n_ranks         = 1; ///< MPI ranks.
+    };
+
+    /**
+     * @brief Estimated peak memory and time of one state of an FE scene,
+     * from a cost model fitted to the measured runs of doc/ladder/ladder.csv
+     * (one state, seed case, this machine; doc/scene-guide.md "Cost
+     * model"): per family (2D; 3D one disc; 3D two discs) peak memory =
+     * 150 MB per rank + a DoFs (a at 2 ranks 2.68, 5.62, 6.97 kB per DoF,
+     * 0.74 of that on 1 rank) and time of a state = c DoFs^p at 2 ranks
+     * (p = 2.06, 1.47, 1.63), (2 / ranks)^0.83 on other rank counts.
+     * Adaptive cycles add states on meshes 1.15 (2D) or 2.7 (3D) times
+     * larger each; degree 2 doubles the memory per DoF and multiplies the
+     * time by 1.5 (not fitted: no measured memory for Q2).
+     */
+    struct CostEstimate
+    {
+      /** Scene family of the fit ("2D", "3D one disc", "3D two discs"). */
+      std::string family;
+      /** DoFs of the first mesh. */
+      dealii::types::global_dof_index n_dofs = 0;
+      /** Peak resident memory summed over the ranks [bytes]. */
+      double memory_bytes = 0;
+      /** Wall time of one solved state (with its adaptive cycles) [s]. */
+      double seconds_per_state = 0;
+
+      /** "DoFs N; estimated peak memory M GB (summed over ranks),
+       * estimated time T s per state". */
+      std::string
+      line() const;
+    };
+
+    /** The cost model's estimate for @p inputs. */
+    CostEstimate
+    estimate_cost(const CostInputs &inputs);
+
+    /**
+     * Memory available to the run [bytes]: /proc/meminfo MemAvailable of
+     * each node the ranks of @p comm run on, summed over the nodes, plus
+     * what the ranks already hold (VmRSS, part of the estimate). The
+     * environment variable CYCLOID_AVAILABLE_MEMORY_MB replaces the
+     * nodes' sum (tests). Collective; infinite if nothing is known.
+     */
+    double
+    available_memory_bytes(const MPI_Comm comm);
+
+    /**
+     * Stop before the big matrices are allocated if @p estimate needs more
+     * than @p available bytes: throws dealii::ExcMessage with the estimate
+     * and the entries of @p mesh that reduce it (their present values).
+     * Call with the same arguments on every rank.
+     */
+    void
+    check_memory(const CostEstimate         &estimate,
+                 const double                available,
+                 const mesh::MeshParameters &mesh);
+  } // namespace stage
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,195 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <cycloid/stage/cost_estimate.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <string>
+
+namespace cycloid
+{
+  namespace stage
+  {
+    namespace
+    {
+      /**
+       * One family of the cost model, fitted by least squares to the
+       * 2-rank, one-state, a-priori-mesh runs of doc/ladder/ladder.csv
+       * (idle machine; doc/scene-guide.md "Cost model" gives the fit and
+       * its error against every run).
+       */
+      struct Family
+      {
+        const char *name;       ///< As printed.
+        double      kb_per_dof; ///< Peak memory per DoF at 2 ranks [kB].
+        double      c;          ///< Time of a state at 2 ranks = c N^p [s].
+        double      p;          ///< Exponent of the time.
+        double      growth;     ///< DoFs growth of one adaptive cycle.
+      };
+
+      // Memory: rms error 3 % (2D, 18 runs), 8 % (3D one disc, 5), 14 %
+      // (3D two discs, 7); time: rms 54 % (2D: seconds dominated by the
+      // number of active-set iterations), 7 %, 18 %. Adaptive growth from
+      // the runs cr1+ad2 (2D) and c1 ax1 cr1+ad1 (3D one disc).
+      constexpr Family two_d{"2D", 2.681, 2.259e-10, 2.059, 1.15};
+      constexpr Family one_disc{"3D one disc", 5.619, 5.606e-7, 1.471, 2.7};
+      constexpr Family two_discs{"3D two discs", 6.970, 6.513e-8, 1.628, 2.7};
+
+      /** Resident memory of a rank before the FE system [MB]: the
+       * analytic runs' peak (151 MB) and the intercept of the fits. */
+      constexpr double mb_per_rank = 150;
+      /** Per-DoF memory on one rank relative to two (0.71-0.79 measured,
+       * ladder.csv 1- and 2-rank pairs): every rank holds the whole mesh
+       * (parallel::shared::Triangulation), so it grows with the ranks. */
+      constexpr double one_rank_memory = 0.74;
+      /** Time on n ranks = time on 2 x (2/n)^this: the solve speed-up
+       * from 1 to 2 ranks, 1.53-2.20, mean 1.78 (ladder/ranks.csv). */
+      constexpr double rank_exponent = 0.83;
+
+      /** "1.23" with @p digits significant digits. */
+      std::string
+      significant(const double x, const int digits)
+      {
+        std::ostringstream s;
+        s << std::setprecision(digits) << x;
+        return s.str();
+      }
+    } // namespace
+
+
+
+    std::string
+    CostEstimate::line() const
+    {
+      return "DoFs " + std::to_string(n_dofs) + "; estimated peak memory " +
+             significant(memory_bytes / 1e9, 2) +
+             " GB (summed over ranks), estimated time " +
+             significant(seconds_per_state, 2) + " s per state";
+    }
+
+
+
+    CostEstimate
+    estimate_cost(const CostInputs &in)
+    {
+      const Family &f     = in.dimension == 2 ? two_d :
+                            in.n_discs == 1   ? one_disc :
+                                                two_discs;
+      const double  n     = static_cast<double>(in.n_dofs);
+      const double  q2    = in.degree > 1 ? 2. : 1.;
+      const double  ranks = std::max(1u, in.n_ranks);
+      // Peak at the finest mesh, time summed over the adaptive cycles.
+      double seconds = 0, finest = n;
+      for (unsigned int k = 0; k <= in.adaptive_cycles; ++k)
+        {
+          finest = n * std::pow(f.growth, k);
+          seconds += f.c * std::pow(finest, f.p);
+        }
+      const double rank_memory =
+        one_rank_memory + (1. - one_rank_memory) * (ranks - 1.);
+      CostEstimate e;
+      e.family       = f.name;
+      e.n_dofs       = in.n_dofs;
+      e.memory_bytes = 1e6 * mb_per_rank * ranks +
+                       1e3 * f.kb_per_dof * q2 * rank_memory * finest;
+      e.seconds_per_state = seconds * (in.degree > 1 ? 1.5 : 1.) *
+                            std::pow(2. / ranks, rank_exponent);
+      return e;
+    }
+
+
+
+    namespace
+    {
+      /** MemAvailable of this node [bytes], or a negative number. */
+      double
+      node_memory_available()
+      {
+        std::ifstream in("/proc/meminfo");
+        std::string   key;
+        double        kb = -1;
+        std::string   unit;
+        while (in >> key >> kb >> unit)
+          if (key == "MemAvailable:")
+            return 1024. * kb;
+        return -1;
+      }
+    } // namespace
+
+
+
+    double
+    available_memory_bytes(const MPI_Comm comm)
+    {
+      // One reading per node: the ranks of a node share its memory.
+      MPI_Comm node;
+      MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+      const bool leader = dealii::Utilities::MPI::this_mpi_process(node) == 0;
+      MPI_Comm_free(&node);
+      const double mine  = leader ? node_memory_available() : 0.;
+      const double total = dealii::Utilities::MPI::sum(mine, comm);
+      const bool   unknown =
+        dealii::Utilities::MPI::min(leader ? mine : 0., comm) < 0;
+
+      dealii::Utilities::System::MemoryStats stats;
+      dealii::Utilities::System::get_memory_stats(stats);
+      const double held =
+        dealii::Utilities::MPI::sum(1024. * stats.VmRSS, comm);
+
+      if (const char *limit = std::getenv("CYCLOID_AVAILABLE_MEMORY_MB"))
+        return 1e6 * std::atof(limit) + held;
+      if (unknown)
+        return std::numeric_limits<double>::infinity();
+      return total + held;
+    }
+
+
+
+    void
+    check_memory(const CostEstimate         &estimate,
+                 const double                available,
+                 const mesh::MeshParameters &mesh)
+    {
+      if (estimate.memory_bytes <= available)
+        return;
+      std::ostringstream advice;
+      advice << "Mesh/Contact refinements (now " << mesh.contact_refinements
+             << ")";
+      if (!mesh.refine_loaded_side_only)
+        advice << ", Mesh/Contact refinement side = loaded (refines only "
+                  "the pins that carry the torque)";
+      advice << ", a larger Mesh/Contact element size (now "
+             << mesh.contact_size << " mm)";
+      if (mesh.global_refinements > 0)
+        advice << ", Mesh/Global refinements (now " << mesh.global_refinements
+               << ")";
+      if (mesh.adaptive_cycles > 0)
+        advice << ", Mesh/Adaptive refinement cycles (now "
+               << mesh.adaptive_cycles << ")";
+      if (mesh.degree > 1)
+        advice << ", Mesh/Polynomial degree = 1";
+      if (estimate.family != "2D")
+        advice << ", Mesh/Axial layers per disc (now " << mesh.axial_layers
+               << ")";
+      AssertThrow(false,
+                  dealii::ExcMessage(
+                    "the FE scene needs an estimated " +
+                    significant(estimate.memory_bytes / 1e9, 3) +
+                    " GB of memory (summed over the ranks; " +
+                    std::to_string(estimate.n_dofs) + " DoFs, cost model " +
+                    estimate.family + ", doc/scene-guide.md), more than the " +
+                    significant(available / 1e9, 3) +
+                    " GB available (MemAvailable); stopped before the "
+                    "matrices are allocated. Reduce " +
+                    advice.str() + "."));
+    }
+  } // namespace stage
+} // namespace cycloid
