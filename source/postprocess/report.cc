@@ -25,7 +25,7 @@ namespace cycloid
              "wall_s,K_secant_Nm_per_arcmin,K_tangent_Nm_per_arcmin,"
              "takeup_rad,K_secant_elastic_Nm_per_rad,reaction_torque_Nm,"
              "max_pin_force_N,linear_iterations,peak_memory_MB,"
-             "transmission_error_arcsec";
+             "transmission_error_arcsec,preconditioner_setups";
     }
 
 
@@ -187,7 +187,7 @@ namespace cycloid
                 << s.k_secant_elastic() << ',' << s.reaction_torque << ','
                 << s.max_pin_force() << ',' << s.linear_iterations << ','
                 << s.peak_memory_MB << ',' << s.rotation * u::arcsec_per_rad
-                << '\n';
+                << ',' << s.preconditioner_setups << '\n';
       // (+ 0. turns a negative zero into 0 in the CSV.)
       for (const results::PinState &p : s.pins)
         pin_forces << s.step << ',' << crank_deg << ',' << p.disc << ','
