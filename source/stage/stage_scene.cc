@@ -83,7 +83,9 @@ namespace cycloid
       , model(settings.model_settings())
       , psi_mesh(request.crank_angle)
       , psi(request.crank_angle)
-      , pcout(std::cout, dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+      , pcout(std::cout,
+              !settings.quiet &&
+                dealii::Utilities::MPI::this_mpi_process(comm) == 0)
       // Rank 0's own times, on MPI_COMM_SELF: a timer on the run's
       // communicator synchronises the ranks when a section starts and ends
       // (three reductions per section), also while an exception unwinds
