@@ -8,6 +8,8 @@ Usage: check_quasi_static.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
   and the sum of pin force x arm equals it (to round-off: 1e-8);
 * the same K, rotation and engaged pins on 1 and 2 ranks (1e-6);
 * monotonicity with torque: engaged pins and K_secant do not decrease;
+* every FE state set up its preconditioner at least once and at most once
+  per active-set iteration (preconditioner_setups);
 * at the highest torque the FE model engages the same pins as the
   analytical model of the same scene (run here with Run = analytic);
 * with --stiffer DIR (the same scene with rigid pins): that run is stiffer
@@ -51,6 +53,9 @@ def main(prm, dir1, dir2, exe, stiffer=None, close=None):
         check(abs(float(s["reaction_torque_Nm"]) - t) <= 1e-8 * t, f"reaction torque {s['reaction_torque_Nm']} != {t}")
         total = sum(float(r["Fn_N"]) * float(r["arm_mm"]) * 1e-3 for r in p2 if r["step"] == s["step"])
         check(abs(total - t) <= 1e-8 * t, f"sum F arm = {total} != {t}")
+        setups = int(s["preconditioner_setups"])
+        check(1 <= setups <= int(s["active_set_iterations"]),
+              f"{setups} preconditioner set-ups for {s['active_set_iterations']} active-set iterations")
         check(int(s["pins_in_contact"]) >= previous_pins, "engaged pins decrease with torque")
         check(float(s["K_secant_Nm_per_rad"]) >= previous_k, "K_secant decreases with torque")
         previous_pins, previous_k = int(s["pins_in_contact"]), float(s["K_secant_Nm_per_rad"])

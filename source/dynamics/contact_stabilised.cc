@@ -115,6 +115,7 @@ namespace cycloid
       contact.scale_reactions(0.5);
       out.iterations = p.iterations + out.state.iterations;
       out.state.linear_iterations += p.linear_iterations;
+      out.state.preconditioner_setups += p.preconditioner_setups;
       out.u = owned_copy(contact, contact.displacement());
       // v_{n+1} = v_n + 2/dt (u_{n+1} - u~); the acceleration is not
       // part of the scheme's state (zero).

@@ -125,6 +125,15 @@ namespace cycloid
                           "Number of crank angles of a phase sweep over one "
                           "mesh period 360/zp degrees, both ends included "
                           "[-]; 1 solves only at Crank angle.");
+        prm.declare_entry("Ranks per phase group",
+                          "0",
+                          Integer(0, 100000),
+                          "Phase sweeps: MPI ranks per phase group [ranks]. "
+                          "The ranks split into groups of this size, each "
+                          "solving a contiguous block of the phases on its "
+                          "own ranks (the number of ranks must be a multiple, "
+                          "with at most one group per phase); 0 puts all "
+                          "ranks in one group. Other run modes ignore it.");
         prm.declare_entry("Rated torque",
                           "1000",
                           Double(1e-6, 1e9),
@@ -161,10 +170,11 @@ namespace cycloid
         rotation_control = prm.get("Control") == "rotation";
         rotations_deg    = dealii::Utilities::string_to_double(
           dealii::Utilities::split_string_list(prm.get("Rotation")));
-        n_phases           = prm.get_integer("Number of phases");
-        rated_torque       = prm.get_double("Rated torque");
-        torque_cycle       = prm.get_bool("Torque cycle");
-        torque_cycle_steps = prm.get_integer("Torque cycle steps");
+        n_phases              = prm.get_integer("Number of phases");
+        ranks_per_phase_group = prm.get_integer("Ranks per phase group");
+        rated_torque          = prm.get_double("Rated torque");
+        torque_cycle          = prm.get_bool("Torque cycle");
+        torque_cycle_steps    = prm.get_integer("Torque cycle steps");
       }
       prm.leave_subsection();
       AssertThrow(!torques.empty(),

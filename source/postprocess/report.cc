@@ -26,7 +26,7 @@ namespace cycloid
              "wall_s,K_secant_Nm_per_arcmin,K_tangent_Nm_per_arcmin,"
              "takeup_rad,K_secant_elastic_Nm_per_rad,reaction_torque_Nm,"
              "max_pin_force_N,linear_iterations,peak_memory_MB,"
-             "transmission_error_arcsec";
+             "transmission_error_arcsec,preconditioner_setups";
     }
 
 
@@ -189,7 +189,8 @@ namespace cycloid
                 << ',' << s.k_secant_elastic() << ',' << s.reaction_torque
                 << ',' << s.max_pin_force() << ',' << s.linear_iterations << ','
                 << s.peak_memory_MB << ','
-                << s.rotation * u::arcsec_per_rad + 0. << '\n';
+                << s.rotation * u::arcsec_per_rad + 0. << ','
+                << s.preconditioner_setups << '\n';
       // (+ 0. turns a negative zero into 0 in the CSV.)
       for (const results::PinState &p : s.pins)
         pin_forces << s.step << ',' << crank_deg << ',' << p.disc << ','

@@ -84,7 +84,9 @@ namespace cycloid
       , model(settings.model_settings())
       , psi_mesh(request.crank_angle)
       , psi(request.crank_angle)
-      , pcout(std::cout, dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+      , pcout(std::cout,
+              !settings.quiet &&
+                dealii::Utilities::MPI::this_mpi_process(comm) == 0)
       // Rank 0's own times, on MPI_COMM_SELF: a timer on the run's
       // communicator synchronises the ranks when a section starts and ends
       // (three reductions per section), also while an exception unwinds
@@ -432,6 +434,7 @@ namespace cycloid
       contact::ContactState result     = solve_state(load);
       unsigned int          iterations = result.iterations;
       unsigned long         linear     = result.linear_iterations;
+      unsigned int          setups     = result.preconditioner_setups;
       for (unsigned int cycle = 0; cycle < settings.mesh.adaptive_cycles;
            ++cycle)
         {
@@ -442,11 +445,13 @@ namespace cycloid
           result = solve_state(load);
           iterations += result.iterations;
           linear += result.linear_iterations;
+          setups += result.preconditioner_setups;
         }
-      results::StageState s = state(result, load);
-      s.iterations          = iterations;
-      s.linear_iterations   = linear;
-      s.peak_memory_MB      = postprocess::peak_memory_MB(comm);
+      results::StageState s   = state(result, load);
+      s.iterations            = iterations;
+      s.linear_iterations     = linear;
+      s.preconditioner_setups = setups;
+      s.peak_memory_MB        = postprocess::peak_memory_MB(comm);
       s.wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
@@ -655,11 +660,12 @@ namespace cycloid
       s.crank = psi;
       s.torque =
         settings.rotation_control ? stage_torque(result.reaction) : load;
-      s.rotation          = result.beta;
-      s.k_tangent         = result.tangent * width_scale() * u::Nm_per_Nmm;
-      s.dofs              = contact->elasticity().n_dofs();
-      s.iterations        = result.iterations;
-      s.linear_iterations = result.linear_iterations;
+      s.rotation              = result.beta;
+      s.k_tangent             = result.tangent * width_scale() * u::Nm_per_Nmm;
+      s.dofs                  = contact->elasticity().n_dofs();
+      s.iterations            = result.iterations;
+      s.linear_iterations     = result.linear_iterations;
+      s.preconditioner_setups = result.preconditioner_setups;
       s.pins.resize(nd * zp);
       for (unsigned int d = 0; d < nd; ++d)
         for (unsigned int j = 0; j < zp; ++j)

@@ -93,6 +93,10 @@ namespace cycloid
        * `Crank angle`). */
       unsigned int n_phases = 1;
 
+      /** Phase sweeps: MPI ranks per phase group, each group solving its
+       * own block of phases (0: all ranks in one group). */
+      unsigned int ranks_per_phase_group = 0;
+
       /** Declare subsection `Loading`. */
       static void
       declare_parameters(dealii::ParameterHandler &prm);

@@ -24,10 +24,15 @@ namespace cycloid
     class SolutionRecord
     {
     public:
-      /** The record of @p directory (rank 0 of @p comm writes). */
-      SolutionRecord(const std::string &directory, const MPI_Comm comm)
+      /** The record of @p directory (rank 0 of @p comm writes it, unless
+       * @p write_record is false: a phase group whose solution files
+       * another rank's record lists, in phase order). */
+      SolutionRecord(const std::string &directory,
+                     const MPI_Comm     comm,
+                     const bool         write_record = true)
         : directory(directory)
-        , root(dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+        , root(write_record &&
+               dealii::Utilities::MPI::this_mpi_process(comm) == 0)
       {}
 
       /** The name of the solution file of state or step @p step, without

@@ -119,6 +119,10 @@ namespace cycloid
 
       /** Active-set (FE) or torque-balance (analytic) iterations. */
       unsigned int iterations = 0;
+      /** Preconditioner set-ups (AMG hierarchies or direct factorisations)
+       * of the state, over its adaptive cycles (FE; 0 for analytic
+       * states and zero-torque limits). */
+      unsigned int preconditioner_setups = 0;
       /** Linear-solver iterations of the state. */
       unsigned long linear_iterations = 0;
       /** Degrees of freedom (0 for models without a mesh). */

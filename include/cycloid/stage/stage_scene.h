@@ -50,6 +50,9 @@ namespace cycloid
       bool rotation_control = false;
       /** Where the solution fields go. */
       std::string output_directory = "output";
+      /** Print nothing (the scenes of a phase group other than world rank
+       * 0's: the console has one voice). */
+      bool quiet = false;
 
       /** The settings of the analytical model of the same stage. */
       analytic::ModelSettings

@@ -1,0 +1,130 @@
+#include <deal.II/base/exceptions.h>
+
+#include <cycloid/results/state_buffer.h>
+
+#include <string>
+#include <type_traits>
+
+namespace cycloid
+{
+  namespace results
+  {
+    namespace
+    {
+      // The one list of fields of each struct: pack() and unpack() both
+      // call these, with a const or a mutable struct, so the two cannot
+      // disagree on the order.
+      template <typename State, typename Field>
+      void
+      for_each_field(State &s, Field &&f)
+      {
+        f(s.step);
+        f(s.crank);
+        f(s.torque);
+        f(s.rotation);
+        f(s.k_tangent);
+        f(s.takeup);
+        f(s.reaction_torque);
+        f(s.iterations);
+        f(s.preconditioner_setups);
+        f(s.linear_iterations);
+        f(s.dofs);
+        f(s.wall_s);
+        f(s.peak_memory_MB);
+      }
+
+      template <typename Pin, typename Field>
+      void
+      for_each_pin_field(Pin &p, Field &&f)
+      {
+        f(p.disc);
+        f(p.pin);
+        f(p.fx);
+        f(p.fy);
+        f(p.fn);
+        f(p.arm);
+        f(p.clearance);
+        f(p.phase);
+        f(p.approach);
+        f(p.pair_stiffness);
+        f(p.contact_point[0]);
+        f(p.contact_point[1]);
+        f(p.contact_halfwidth);
+        f(p.hertz_halfwidth);
+        f(p.max_pressure);
+        f(p.hertz_pressure);
+        f(p.max_shear_stress);
+        f(p.max_shear_depth);
+      }
+
+      /** Number of doubles of the fields of a state and of a pin. */
+      template <typename T, typename Visit>
+      unsigned int
+      count(Visit &&visit)
+      {
+        T            x{};
+        unsigned int n = 0;
+        visit(x, [&n](auto &) { ++n; });
+        return n;
+      }
+
+      unsigned int
+      n_state_fields()
+      {
+        return count<StageState>(
+          [](StageState &s, auto &&f) { for_each_field(s, f); });
+      }
+
+      unsigned int
+      n_pin_fields()
+      {
+        return count<PinState>(
+          [](PinState &p, auto &&f) { for_each_pin_field(p, f); });
+      }
+    } // namespace
+
+
+
+    std::vector<double>
+    StateBuffer::pack(const StageState &state)
+    {
+      std::vector<double> buffer;
+      buffer.reserve(n_state_fields() + 1 + state.pins.size() * n_pin_fields());
+      const auto put = [&buffer](const auto &x) {
+        buffer.push_back(static_cast<double>(x));
+      };
+      for_each_field(state, put);
+      buffer.push_back(state.pins.size());
+      for (const PinState &p : state.pins)
+        for_each_pin_field(p, put);
+      return buffer;
+    }
+
+
+
+    StageState
+    StateBuffer::unpack(const double *data, const unsigned int size)
+    {
+      const unsigned int header = n_state_fields() + 1;
+      AssertThrow(size >= header,
+                  dealii::ExcMessage("StateBuffer: " + std::to_string(size) +
+                                     " doubles are too few for a state."));
+      const unsigned int n_pins = static_cast<unsigned int>(data[header - 1]);
+      AssertThrow(size == header + n_pins * n_pin_fields(),
+                  dealii::ExcMessage("StateBuffer: " + std::to_string(size) +
+                                     " doubles do not hold a state with " +
+                                     std::to_string(n_pins) + " pins."));
+      unsigned int i   = 0;
+      const auto   get = [data, &i](auto &x) {
+        x = static_cast<std::remove_reference_t<decltype(x)>>(data[i++]);
+      };
+      StageState state;
+      for_each_field(state, get);
+      ++i; // the number of pins
+      state.pins.resize(n_pins);
+      for (PinState &p : state.pins)
+        for_each_pin_field(p, get);
+      return state;
+    }
+  } // namespace results
+} // namespace cycloid

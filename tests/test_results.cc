@@ -1,0 +1,140 @@
+// The flat buffer of a state (results::StateBuffer), in which the phase
+// groups of a sweep send their states to world rank 0: every field of a
+// state and of each pin comes back exactly, and a buffer of the wrong size
+// is refused.
+
+#include <deal.II/base/exceptions.h>
+
+#include <cycloid/results/state_buffer.h>
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+using namespace cycloid;
+
+namespace
+{
+  /** A state whose every field holds a value of its own (none zero, the
+   * integers above 2^32 where the type allows), with @p n_pins pins. */
+  results::StageState
+  distinct_state(const unsigned int n_pins)
+  {
+    results::StageState s;
+    s.step                  = 7;
+    s.crank                 = 0.123456789012345;
+    s.torque                = -987.654321;
+    s.rotation              = 1.5e-4;
+    s.k_tangent             = 6.02e6;
+    s.takeup                = -3.25e-5;
+    s.reaction_torque       = 987.6543;
+    s.iterations            = 11;
+    s.preconditioner_setups = 13;
+    s.linear_iterations     = 5000000000ul;
+    s.dofs                  = 6000000001ul;
+    s.wall_s                = 2.718281828459045;
+    s.peak_memory_MB        = 1234.5;
+    for (unsigned int j = 0; j < n_pins; ++j)
+      {
+        results::PinState p;
+        const double      x = 1. + j / 7.;
+        p.disc              = j % 2;
+        p.pin               = j;
+        p.fx                = 1.1 * x;
+        p.fy                = -2.2 * x;
+        p.fn                = 3.3 * x;
+        p.arm               = 4.4 * x;
+        p.clearance         = 5.5e-3 * x;
+        p.phase             = 0.66 * x;
+        p.approach          = -7.7e-3 * x;
+        p.pair_stiffness    = 8.8e5 * x;
+        p.contact_point     = dealii::Point<2>(9.9 * x, -10.1 * x);
+        p.contact_halfwidth = 0.11 * x;
+        p.hertz_halfwidth   = 0.12 * x;
+        p.max_pressure      = 1300. * x;
+        p.hertz_pressure    = 1400. * x;
+        p.max_shear_stress  = 450. * x;
+        p.max_shear_depth   = 0.16 * x;
+        s.pins.push_back(p);
+      }
+    return s;
+  }
+} // namespace
+
+
+
+TEST(StateBuffer, StructsHaveTheFieldsThePackingKnows)
+{
+  // A field added to PinState or StageState changes these sizes: add it to
+  // for_each_field()/for_each_pin_field() (source/results/state_buffer.cc)
+  // and to distinct_state() above, then update the sizes.
+  EXPECT_EQ(sizeof(results::PinState),
+            2 * sizeof(unsigned int) + 16 * sizeof(double));
+  EXPECT_EQ(sizeof(results::StageState),
+            2 * sizeof(unsigned int) /* step + padding */ + 6 * sizeof(double) +
+              sizeof(std::vector<results::PinState>) +
+              2 * sizeof(unsigned int) + 2 * sizeof(unsigned long) +
+              2 * sizeof(double));
+}
+
+
+
+TEST(StateBuffer, EveryFieldComesBackExactly)
+{
+  for (const unsigned int n_pins : {0u, 1u, 80u})
+    {
+      const results::StageState a      = distinct_state(n_pins);
+      const std::vector<double> buffer = results::StateBuffer::pack(a);
+      EXPECT_EQ(buffer.size(), 14u + 18u * n_pins);
+      const results::StageState b = results::StateBuffer::unpack(buffer);
+      EXPECT_EQ(b.step, a.step);
+      EXPECT_EQ(b.crank, a.crank);
+      EXPECT_EQ(b.torque, a.torque);
+      EXPECT_EQ(b.rotation, a.rotation);
+      EXPECT_EQ(b.k_tangent, a.k_tangent);
+      EXPECT_EQ(b.takeup, a.takeup);
+      EXPECT_EQ(b.reaction_torque, a.reaction_torque);
+      EXPECT_EQ(b.iterations, a.iterations);
+      EXPECT_EQ(b.preconditioner_setups, a.preconditioner_setups);
+      EXPECT_EQ(b.linear_iterations, a.linear_iterations);
+      EXPECT_EQ(b.dofs, a.dofs);
+      EXPECT_EQ(b.wall_s, a.wall_s);
+      EXPECT_EQ(b.peak_memory_MB, a.peak_memory_MB);
+      ASSERT_EQ(b.pins.size(), a.pins.size());
+      for (unsigned int j = 0; j < n_pins; ++j)
+        {
+          const results::PinState &p = a.pins[j], &q = b.pins[j];
+          EXPECT_EQ(q.disc, p.disc);
+          EXPECT_EQ(q.pin, p.pin);
+          EXPECT_EQ(q.fx, p.fx);
+          EXPECT_EQ(q.fy, p.fy);
+          EXPECT_EQ(q.fn, p.fn);
+          EXPECT_EQ(q.arm, p.arm);
+          EXPECT_EQ(q.clearance, p.clearance);
+          EXPECT_EQ(q.phase, p.phase);
+          EXPECT_EQ(q.approach, p.approach);
+          EXPECT_EQ(q.pair_stiffness, p.pair_stiffness);
+          EXPECT_EQ(q.contact_point, p.contact_point);
+          EXPECT_EQ(q.contact_halfwidth, p.contact_halfwidth);
+          EXPECT_EQ(q.hertz_halfwidth, p.hertz_halfwidth);
+          EXPECT_EQ(q.max_pressure, p.max_pressure);
+          EXPECT_EQ(q.hertz_pressure, p.hertz_pressure);
+          EXPECT_EQ(q.max_shear_stress, p.max_shear_stress);
+          EXPECT_EQ(q.max_shear_depth, p.max_shear_depth);
+        }
+      // The derived figures follow.
+      EXPECT_EQ(b.pins_in_contact(), a.pins_in_contact());
+      EXPECT_EQ(b.max_pin_force(), a.max_pin_force());
+    }
+}
+
+
+
+TEST(StateBuffer, BufferOfTheWrongSizeIsRefused)
+{
+  std::vector<double> buffer = results::StateBuffer::pack(distinct_state(3));
+  buffer.pop_back();
+  EXPECT_THROW(results::StateBuffer::unpack(buffer), dealii::ExceptionBase);
+  EXPECT_THROW(results::StateBuffer::unpack(buffer.data(), 5),
+               dealii::ExceptionBase);
+}
