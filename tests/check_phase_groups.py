@@ -21,6 +21,7 @@ groups of 2; then for each grouped run:
 * the console has one progress line per state and the groups' busy times.
 """
 import csv
+import math
 import os
 import re
 import subprocess
@@ -46,6 +47,8 @@ def header(path):
 
 
 def rel(a, b, floor=0.0):
+    if math.isnan(a) and math.isnan(b):  # e.g. an unknown noise floor in both
+        return 0.0
     return abs(a - b) / max(abs(a), abs(b), floor, 1e-300)
 
 
