@@ -33,6 +33,7 @@ import numpy as np
 
 from catalogue_figures import ARCMIN, ARCSEC, catalogue
 from cycloid_prm import read_prm
+from checker import check, rows as read_csv, verdict
 
 DEFAULTS = {
     ("Geometry", "Number of pins"): "40",
@@ -62,19 +63,6 @@ DEFAULTS = {
     ("Analytic", "Pair stiffness model"): "line-contact",
     ("Analytic", "Load sharing coefficient"): "0.7",
 }
-
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-
-
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return rows
 
 
 def torque_cycle(get):
@@ -366,13 +354,7 @@ def main(prm_path, outdir):
                 fz = {(int(r["disc"]), int(r["pin"])): float(r["Fn_N"]) for r in by_step[int(z["step"])]}
                 for (d, j), f in fz.items():
                     check(abs(f - fa[(d, (j - 1) % zp)]) <= 1e-8 * max(f, 1), f"periodicity of pin {j} force")
-    if failures:
-        print(f"{len(failures)} check(s) failed:")
-        for f in failures[:30]:
-            print("  ", f)
-        return 1
-    print(f"all checks passed ({len(stiffness)} states, {len(pins)} pin rows)")
-    return 0
+    return verdict(f"all checks passed ({len(stiffness)} states, {len(pins)} pin rows)")
 
 
 if __name__ == "__main__":

@@ -14,7 +14,6 @@ Usage: check_phase_sweep.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
   start from the analytical model) gives the same rotation and K (1e-8);
 * the same results on 1 and 2 ranks (1e-6).
 """
-import csv
 import os
 import subprocess
 import sys
@@ -22,18 +21,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cycloid_prm import read_prm  # noqa: E402
-
-failures = []
-
-
-def check(cond, msg):
-    if not cond:
-        failures.append(msg)
-
-
-def rows(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+from checker import check, rows, verdict
 
 
 def close(a, b, tol):
@@ -98,13 +86,7 @@ def main(prm, dir1, dir2, exe):
         for key in ("rotation_rad", "K_tangent_Nm_per_rad"):
             print(f"crank {middle:g} deg, T {a['torque_Nm']}: {key} quasi-static {a[key]}, phase sweep {b[key]}")
             check(close(float(a[key]), float(b[key]), 1e-8), f"{key} at the middle phase depends on the warm start")
-    if failures:
-        print(f"{len(failures)} check(s) failed:")
-        for f in failures:
-            print("  ", f)
-        return 1
-    print("all checks passed")
-    return 0
+    return verdict("all checks passed")
 
 
 if __name__ == "__main__":

@@ -19,23 +19,12 @@ Usage: check_quasi_static.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
   at every torque, and the same pins are engaged.
 """
 import argparse
-import csv
 import os
 import subprocess
 import sys
 import tempfile
 
-failures = []
-
-
-def check(cond, msg):
-    if not cond:
-        failures.append(msg)
-
-
-def rows(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+from checker import check, rows, verdict
 
 
 def main(prm, dir1, dir2, exe, stiffer=None, close=None):
@@ -93,13 +82,7 @@ def main(prm, dir1, dir2, exe, stiffer=None, close=None):
                 check(abs(y - x) <= tol * abs(x), f"{key} {y} not within {tol} of {x}")
             engaged = lambda rs, st: sorted((r["disc"], r["pin"]) for r in rs if r["step"] == st and float(r["Fn_N"]) > 0)
             check(engaged(po, a["step"]) == engaged(p2, b["step"]), f"engaged pins differ from {other} at T {b['torque_Nm']}")
-    if failures:
-        print(f"{len(failures)} check(s) failed:")
-        for f in failures:
-            print("  ", f)
-        return 1
-    print("all checks passed")
-    return 0
+    return verdict("all checks passed")
 
 
 if __name__ == "__main__":

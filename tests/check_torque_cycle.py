@@ -19,7 +19,6 @@ Usage: check_torque_cycle.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
 * the analytical model of the same scene has the same backlash (the same
   exact geometry) and a larger rigidity (it lacks the bodies' compliance).
 """
-import csv
 import os
 import re
 import subprocess
@@ -27,18 +26,7 @@ import sys
 import tempfile
 
 from catalogue_figures import ARCMIN, catalogue
-
-failures = []
-
-
-def check(cond, msg):
-    if not cond:
-        failures.append(msg)
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+from checker import check, rows as read_csv, verdict
 
 
 def analytic_backlash_and_rigidity(prm, exe):
@@ -108,13 +96,7 @@ def main(prm, dir1, dir2, exe):
     a = analytic_backlash_and_rigidity(prm, exe)
     check(abs(float(a["backlash_arcmin"]) - backlash) <= 1e-9 * backlash, "backlash differs from the analytical model's")
     check(float(a["torsional_rigidity_Nm_per_arcmin"]) > rigidity, "the FE model is not softer than the analytical one")
-    if failures:
-        print(f"{len(failures)} check(s) failed:")
-        for f in failures:
-            print("  ", f)
-        return 1
-    print("all checks passed")
-    return 0
+    return verdict("all checks passed")
 
 
 if __name__ == "__main__":
