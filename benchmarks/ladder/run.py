@@ -8,7 +8,7 @@ ranks, and the seed's parameter study with the cheapest adequate FE scene.
 One command (about 45 min on 2 cores shared with another job; --quick about
 8 min):
 
-    /usr/bin/python3 benchmarks/ladder/run.py [--part analytic,2d,3d1,3d2,ranks,seed-study]
+    /usr/bin/python3 benchmarks/ladder/run.py [--part analytic,2d,3d1,3d2,ranks,reduced,seed-study]
         [--quick] [--exe build/cycloid-contact] [--out doc/ladder] [--analyse-only]
 
 Rated torque and normalisation
@@ -43,6 +43,11 @@ Parts (every FE run: Run = quasi-static, crank angle 0, unmodified seed profile
               are kept otherwise. The adaptive cycles run only with --cases. Plus
               the runs of doc/contact-speed-3d.csv (marked
               source=contact-speed, not rerun);
+  reduced     Run = reduced (doc/reduced-model.md): 2D one disc (elastic pins on
+              their axes) at its defaults and with cr0 w = 1 mm; 3D two discs
+              (pins in the housing) at its defaults, with one axial slice, and
+              on a coarser in-plane mesh (c0.5 p1.5 f2); dofs = the coarse
+              model's;
   ranks       2D elastic cr1, cr3 and cr1+ad2, and 3D one disc c0.5 ax1 cr2,
               on 1 and 2 ranks back to back
               (rows with source = ranks, kept out of the error chart);
@@ -74,8 +79,17 @@ T_STAGE = 1000.0
 RP_SEED = 2.2 * 40 / 0.675  # 130.370 mm, the pin circle held fixed in the e sweep
 
 SCENES = ["analytic seed", "analytic line-contact", "2D rigid pins", "2D elastic pins",
-          "3D one disc", "3D two discs"]
-COLOURS = dict(zip(SCENES, ["C7", "C8", "C1", "C0", "C2", "C3"]))
+          "3D one disc", "3D two discs", "reduced 2D elastic pins", "reduced 3D two discs"]
+COLOURS = dict(zip(SCENES, ["C7", "C8", "C1", "C0", "C2", "C3", "C9", "C4"]))
+
+# The reduced model (issue #13, doc/reduced-model.md): its coarse model's
+# mesh is the label; "default" = every Mesh and Reduced entry at its default.
+REDUCED_2D = [("default", {}),
+              ("cr0 w1", {"Contact refinements": 0, "Load half-width": 1.0})]
+REDUCED_3D = [("default", {}),
+              ("1 slice", {"Axial slices per disc": 1}),
+              ("c0.5 p1.5 f2", {"mesh": {"Contact element size": 0.5, "Pin element size": 1.5,
+                                          "Flank element size": 2}})]
 
 
 def c3(**kw):  # the 3D meshes of doc/contact-speed.md
@@ -273,6 +287,28 @@ def part_3d2(args, work):
                    prm_text("__OUT__", "quasi-static", 3, 2, "elastic", "housing", T_STAGE, mesh), False)
             for label, mesh in pick(THREE_D2, THREE_D2_QUICK, args)
             if args.cases or label in THREE_D2_DEFAULT]
+
+
+def reduced_text(dim, discs, support, torque, settings):
+    text = prm_text("__OUT__", "reduced", dim, discs, "elastic", support, torque)
+    settings = dict(settings)
+    mesh = settings.pop("mesh", {})
+    if mesh:
+        text += "subsection Mesh\n" + "".join(f"  set {k} = {v}\n" for k, v in mesh.items()) + "end\n"
+    if settings:
+        text += "subsection Reduced\n" + "".join(f"  set {k} = {v}\n" for k, v in settings.items()) + "end\n"
+    return text
+
+
+def part_reduced(args, work):
+    """Run = reduced: 2D one disc (T/2, doubled like the 2D FE scenes) and
+    3D two discs with the pins in the housing (the stage); dofs are the coarse
+    model's."""
+    rows = [fe_row(args, work, "reduced 2D elastic pins", label, args.ranks,
+                   reduced_text(2, 1, "axis", T_STAGE / 2, s), True) for label, s in REDUCED_2D]
+    rows += [fe_row(args, work, "reduced 3D two discs", label, args.ranks,
+                    reduced_text(3, 2, "housing", T_STAGE, s), False) for label, s in REDUCED_3D]
+    return rows
 
 
 def part_ranks(args, work):
@@ -630,14 +666,15 @@ def plot_cost(path, rows, notes):
             notes.append(f"cost fit {s} (a-priori meshes, {len(rr)} runs): wall ~ DoFs^{b:.2f}")
     # Above 1e5 DoFs the fixed costs (gmsh, set-up: a few s) no longer
     # dominate; 2D and 3D runs mixed, a-priori meshes of this benchmark.
-    big = [r for r in fe if r["dofs"] >= 1e5 and r["source"] == "ladder" and "+ad" not in r["mesh"]]
+    big = [r for r in fe if r["dofs"] >= 1e5 and r["source"] == "ladder" and "+ad" not in r["mesh"]
+           and not r["scene"].startswith("reduced")]
     if len(big) >= 2:
         b, a = fit_power([r["dofs"] for r in big], [r["wall_s"] for r in big])
         xs = [min(r["dofs"] for r in big), max(r["dofs"] for r in big)]
         ax.plot(xs, [a * x ** b for x in xs], "k--", lw=1, label=f"all a-priori runs >= 1e5 DoFs: wall ~ DoFs^{b:.2f}")
         notes.append(f"cost fit all a-priori FE runs of this benchmark with >= 1e5 DoFs ({len(big)}): "
                      f"wall ~ DoFs^{b:.2f}")
-    ax.set_xlabel("DoFs (final mesh)")
+    ax.set_xlabel("DoFs (final mesh; reduced: its coarse model)")
     ax.set_ylabel("wall time [s] (2 ranks, incl. meshing)")
     ax.set_title("Cost against DoFs (triangles adaptive, open squares doc/contact-speed-3d.csv,\n"
                  "timed under load and not fitted)", fontsize=8)
@@ -773,8 +810,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "cycloid-contact"))
-    ap.add_argument("--part", default="analytic,2d,3d1,3d2,ranks,seed-study",
-                    help="comma list of analytic, 2d, 3d1, 3d2, ranks, seed-study")
+    ap.add_argument("--part", default="analytic,2d,3d1,3d2,ranks,reduced,seed-study",
+                    help="comma list of analytic, 2d, 3d1, 3d2, ranks, reduced, seed-study")
     ap.add_argument("--quick", action="store_true", help="the coarse meshes of every part only")
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--cases", default=None, help="comma list of mesh labels to run (default: all of the part)")
@@ -803,7 +840,8 @@ def main():
             tmp = tempfile.TemporaryDirectory()
             work = tmp.name
         print(f"executable {args.exe}, work dir {work}", flush=True)
-        funcs = {"analytic": part_analytic, "2d": part_2d, "3d1": part_3d1, "3d2": part_3d2, "ranks": part_ranks}
+        funcs = {"analytic": part_analytic, "2d": part_2d, "3d1": part_3d1, "3d2": part_3d2, "ranks": part_ranks,
+                 "reduced": part_reduced}
         path = os.path.join(args.out, "ladder.csv")
         for part in args.part.split(","):
             if part == "seed-study":

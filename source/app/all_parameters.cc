@@ -43,6 +43,7 @@ namespace cycloid
       contact::ContactParameters::declare_parameters(prm);
       dynamics::TransientParameters::declare_parameters(prm);
       profile::ProfileParameters::declare_parameters(prm);
+      reduced::ReducedParameters::declare_parameters(prm);
     }
 
 
@@ -60,6 +61,7 @@ namespace cycloid
       contact.parse_parameters(prm);
       transient.parse_parameters(prm);
       profile.parse_parameters(prm);
+      reduced.parse_parameters(prm);
       // Where the run mode and the dimension are both known.
       notes.clear();
       const std::string discs = scene.resolve_number_of_discs(run.fe());

@@ -45,7 +45,8 @@ namespace cycloid
       const Modes fe_modes{Mode::mesh,
                            Mode::quasi_static,
                            Mode::phase_sweep,
-                           Mode::transient};
+                           Mode::transient,
+                           Mode::reduced};
 
       /**
        * Which run mode ignores what. The rule of thumb: `analytic` reads
@@ -64,7 +65,7 @@ namespace cycloid
       {
         static const std::vector<Rule> table{
           {"Write solution",
-           {Mode::analytic, Mode::mesh, Mode::profile},
+           {Mode::analytic, Mode::mesh, Mode::profile, Mode::reduced},
            "it writes no FE fields"},
           {"Material/*", {Mode::mesh, Mode::profile}, "it solves nothing"},
           {"Loading/*", {Mode::profile}, "it only draws the profile"},
@@ -74,6 +75,12 @@ namespace cycloid
           {"Loading/Rotation",
            {Mode::analytic},
            "the analytic model is torque-controlled"},
+          {"Loading/Control",
+           {Mode::reduced},
+           "the reduced model is torque-controlled"},
+          {"Loading/Rotation",
+           {Mode::reduced},
+           "the reduced model is torque-controlled"},
           {"Loading/Number of phases",
            {Mode::quasi_static},
            "it solves at Loading/Crank angle only; Run = phase-sweep sweeps "
@@ -125,8 +132,36 @@ namespace cycloid
            "a 2D scene has one disc",
            two_d},
           {"Contact/*",
-           {Mode::analytic, Mode::mesh, Mode::profile},
+           {Mode::analytic, Mode::mesh, Mode::profile, Mode::reduced},
            "it solves no FE contact"},
+          {"Mesh/Contact refinements",
+           {Mode::reduced},
+           "its coarse model is refined by Reduced/Contact refinements"},
+          {"Mesh/Contact refinement side",
+           {Mode::reduced},
+           "its coarse model is refined at the loaded side of its torques"},
+          {"Mesh/Adaptive refinement cycles",
+           {Mode::reduced},
+           "its coarse model is not refined adaptively"},
+          {"Mesh/Axial layers per disc",
+           {Mode::reduced},
+           "its coarse model has Reduced/Axial layers per disc"},
+          {"Reduced/Axial layers per disc",
+           {Mode::reduced},
+           "a 2D scene has no axial layers",
+           two_d},
+          {"Reduced/Axial slices per disc",
+           {Mode::reduced},
+           "a 2D scene has no axial slices",
+           two_d},
+          {"Reduced/*",
+           {Mode::analytic,
+            Mode::mesh,
+            Mode::quasi_static,
+            Mode::phase_sweep,
+            Mode::transient,
+            Mode::profile},
+           "only Run = reduced reads it"},
           {"Solver/*",
            {Mode::analytic, Mode::mesh, Mode::profile},
            "it solves no FE contact"},
@@ -135,6 +170,7 @@ namespace cycloid
             Mode::mesh,
             Mode::quasi_static,
             Mode::phase_sweep,
+            Mode::reduced,
             Mode::profile},
            "only Run = transient reads it"},
           {"Profile/*",
@@ -142,7 +178,8 @@ namespace cycloid
             Mode::mesh,
             Mode::quasi_static,
             Mode::phase_sweep,
-            Mode::transient},
+            Mode::transient,
+            Mode::reduced},
            "only Run = profile reads it"},
         };
         return table;
@@ -166,6 +203,8 @@ namespace cycloid
               return "phase-sweep";
             case Mode::transient:
               return "transient";
+            case Mode::reduced:
+              return "reduced";
             case Mode::profile:
               return "profile";
           }

@@ -9,6 +9,7 @@
 #include <cycloid/runs/phase_sweep.h>
 #include <cycloid/runs/profile_run.h>
 #include <cycloid/runs/quasi_static.h>
+#include <cycloid/runs/reduced_run.h>
 #include <cycloid/runs/transient.h>
 
 #include <filesystem>
@@ -103,6 +104,13 @@ namespace cycloid
               build_and_run<runs::TransientRun<dim>>(
                 typename runs::TransientRun<dim>::Settings{fe_run_settings(prm),
                                                            prm.transient},
+                prm,
+                comm);
+              return;
+            case Mode::reduced:
+              build_and_run<runs::ReducedRun<dim>>(
+                typename runs::ReducedRun<dim>::Settings{
+                  {stage_settings(prm), prm.reduced}, prm.loading},
                 prm,
                 comm);
               return;

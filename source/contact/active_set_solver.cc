@@ -103,6 +103,34 @@ namespace cycloid
 
 
     template <int dim>
+    void
+    ContactSystem<dim>::add_supports(dealii::AffineConstraints<double> &c,
+                                     const double beta) const
+    {
+      for (const auto d : fixed)
+        if (c.can_store_line(d) && !c.is_constrained(d))
+          c.add_line(d);
+      for (const auto &[d, g] : load)
+        if (c.can_store_line(d) && !c.is_constrained(d))
+          {
+            c.add_line(d);
+            c.set_inhomogeneity(d, beta * g);
+          }
+      for (const TiedNode<dim> &t : ties)
+        for (unsigned int comp = 0; comp < dim; ++comp)
+          {
+            const auto d = t.dofs[comp];
+            if (!c.can_store_line(d) || c.is_constrained(d))
+              continue;
+            c.add_line(d);
+            for (unsigned int a = 0; a < t.masters[comp].size(); ++a)
+              c.add_entry(d, t.masters[comp][a], t.weights[comp][a]);
+          }
+    }
+
+
+
+    template <int dim>
     std::function<void(dealii::AffineConstraints<double> &)>
     ActiveSetSolver<dim>::constraint_set(const std::set<unsigned int> &active,
                                          const bool   with_gaps,
@@ -110,25 +138,7 @@ namespace cycloid
     {
       return
         [this, &active, with_gaps, beta](dealii::AffineConstraints<double> &c) {
-          for (const auto d : system.fixed)
-            if (c.can_store_line(d) && !c.is_constrained(d))
-              c.add_line(d);
-          for (const auto &[d, g] : system.load)
-            if (c.can_store_line(d) && !c.is_constrained(d))
-              {
-                c.add_line(d);
-                c.set_inhomogeneity(d, beta * g);
-              }
-          for (const TiedNode<dim> &t : system.ties)
-            for (unsigned int comp = 0; comp < dim; ++comp)
-              {
-                const auto d = t.dofs[comp];
-                if (!c.can_store_line(d) || c.is_constrained(d))
-                  continue;
-                c.add_line(d);
-                for (unsigned int a = 0; a < t.masters[comp].size(); ++a)
-                  c.add_entry(d, t.masters[comp][a], t.weights[comp][a]);
-              }
+          system.add_supports(c, beta);
           for (const unsigned int i : active)
             formulation.constrain(c, system.slaves[i], with_gaps);
         };
@@ -318,6 +328,8 @@ namespace cycloid
 
 
 
+    template struct ContactSystem<2>;
+    template struct ContactSystem<3>;
     template class ActiveSetSolver<2>;
     template class ActiveSetSolver<3>;
   } // namespace contact

@@ -233,6 +233,20 @@ namespace cycloid
 
 
     template <int dim>
+    void
+    ContactProblem<dim>::assemble_without_contact()
+    {
+      const ContactSystem<dim> system{slaves, ties, fixed, load};
+      problem->setup_constraints(
+        {[&system](dealii::AffineConstraints<double> &c) {
+          system.add_supports(c, 0.);
+        }});
+      problem->assemble_sets({});
+    }
+
+
+
+    template <int dim>
     ContactState
     ContactProblem<dim>::solve_load(const double       target,
                                     const std::string &label)

@@ -16,6 +16,9 @@
 
 #include <algorithm>
 
+#include <Amesos.h>
+#include <Epetra_LinearProblem.h>
+#include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 
 namespace cycloid
@@ -65,6 +68,8 @@ namespace cycloid
       dealii::DoFTools::make_hanging_node_constraints(dofs, hanging_all);
       hanging_all.close();
       ready = Ready::none;
+      many_solver.reset();
+      many_problem.reset();
     }
 
 
@@ -111,6 +116,8 @@ namespace cycloid
         rhs.reinit(locally_owned, comm);
       locally_relevant_solution.reinit(locally_owned, locally_relevant, comm);
       ready = Ready::none;
+      many_solver.reset();
+      many_problem.reset();
     }
 
 
@@ -402,6 +409,8 @@ namespace cycloid
       for (auto &rhs : rhs_sets)
         rhs.compress(dealii::VectorOperation::add);
       ready = Ready::none;
+      many_solver.reset();
+      many_problem.reset();
     }
 
 
@@ -716,13 +725,16 @@ namespace cycloid
     bool
     LinearElasticity<dim>::setup_preconditioner(const Solver solver)
     {
-      if (solver == Solver::direct)
+      if (is_direct(solver))
         {
           if (ready == Ready::direct)
             return false;
           direct_control = std::make_unique<dealii::SolverControl>(1, 0);
           direct = std::make_unique<dealii::TrilinosWrappers::SolverDirect>(
-            *direct_control);
+            *direct_control,
+            dealii::TrilinosWrappers::SolverDirect::AdditionalData(
+              false,
+              solver == Solver::direct_mumps ? "Amesos_Mumps" : "Amesos_Klu"));
           direct->initialize(system_matrix);
           ready = Ready::direct;
           return true;
@@ -762,7 +774,7 @@ namespace cycloid
       const auto                           &rhs = rhs_sets[k];
       dealii::TrilinosWrappers::MPI::Vector x(locally_owned, comm);
       unsigned int                          iterations = 0;
-      if (solver != Solver::direct && u.size() == x.size())
+      if (!is_direct(solver) && u.size() == x.size())
         {
           // Warm start from the caller's previous solution.
           for (const auto i : locally_owned)
@@ -770,7 +782,7 @@ namespace cycloid
           x.compress(dealii::VectorOperation::insert);
         }
       setup_preconditioner(solver);
-      if (solver == Solver::direct)
+      if (is_direct(solver))
         direct->solve(x, rhs);
       else
         {
@@ -798,6 +810,65 @@ namespace cycloid
       u.reinit(locally_owned, locally_relevant, comm);
       u = x;
       return iterations;
+    }
+
+
+
+    template <int dim>
+    std::vector<dealii::TrilinosWrappers::MPI::Vector>
+    LinearElasticity<dim>::solve_many(
+      const std::vector<dealii::TrilinosWrappers::MPI::Vector> &rhs,
+      const unsigned int                                        block)
+    {
+      const Epetra_CrsMatrix &A = system_matrix.trilinos_matrix();
+      std::vector<dealii::TrilinosWrappers::MPI::Vector> solutions;
+      if (!many_problem)
+        {
+          many_problem = std::make_shared<Epetra_LinearProblem>();
+          many_problem->SetOperator(const_cast<Epetra_CrsMatrix *>(&A));
+        }
+      Epetra_LinearProblem &problem = *many_problem;
+      for (unsigned int first = 0; first < rhs.size(); first += block)
+        {
+          const unsigned int n =
+            std::min<unsigned int>(block, rhs.size() - first);
+          Epetra_MultiVector B(A.RangeMap(), n), X(A.DomainMap(), n);
+          for (unsigned int k = 0; k < n; ++k)
+            {
+              const Epetra_MultiVector &b = rhs[first + k].trilinos_vector();
+              for (int i = 0; i < B.MyLength(); ++i)
+                B[k][i] = b[0][i];
+            }
+          problem.SetLHS(&X);
+          problem.SetRHS(&B);
+          if (!many_solver)
+            {
+              Amesos factory;
+              many_solver.reset(factory.Create("Amesos_Mumps", problem));
+              AssertThrow(many_solver != nullptr,
+                          dealii::ExcMessage(
+                            "elasticity: Trilinos has no Amesos_Mumps."));
+              AssertThrow(many_solver->SymbolicFactorization() == 0 &&
+                            many_solver->NumericFactorization() == 0,
+                          dealii::ExcMessage(
+                            "elasticity: the MUMPS factorisation failed (is a "
+                            "body unconstrained?)"));
+            }
+          AssertThrow(many_solver->Solve() == 0,
+                      dealii::ExcMessage(
+                        "elasticity: the MUMPS solve failed."));
+          for (unsigned int k = 0; k < n; ++k)
+            {
+              dealii::TrilinosWrappers::MPI::Vector x(locally_owned, comm);
+              Epetra_MultiVector                   &xv = x.trilinos_vector();
+              for (int i = 0; i < X.MyLength(); ++i)
+                xv[0][i] = X[k][i];
+              constraint_sets[0].distribute(x);
+              solutions.emplace_back(locally_owned, locally_relevant, comm);
+              solutions.back() = x;
+            }
+        }
+      return solutions;
     }
 
 

@@ -335,11 +335,15 @@ namespace cycloid
       prm.declare_entry(
         "Run",
         "analytic",
-        Selection("analytic|mesh|quasi-static|phase-sweep|transient|profile"),
+        Selection(
+          "analytic|mesh|quasi-static|phase-sweep|transient|reduced|profile"),
         "Run mode: 'analytic' (Hertz-based load distribution, "
         "Analytic subsection), 'mesh' (write the FE mesh), 'quasi-static' "
         "(FE contact at Crank angle), 'phase-sweep' (FE over Number of "
-        "phases), 'transient' (elastodynamics with contact), 'profile' "
+        "phases), 'transient' (elastodynamics with contact), 'reduced' "
+        "(the coarse FE compliance condensed onto the contacts with the "
+        "analytic line-contact law, Reduced subsection; driven like "
+        "'analytic' by the Torque list and crank angles), 'profile' "
         "(the modified profile of one disc as profile.csv, .dxf and .step "
         "for CAD, at Profile/Chord tolerance).");
       prm.declare_entry("Output directory",
@@ -372,6 +376,8 @@ namespace cycloid
         mode = Mode::quasi_static;
       else if (mode_name == "phase-sweep")
         mode = Mode::phase_sweep;
+      else if (mode_name == "reduced")
+        mode = Mode::reduced;
       else if (mode_name == "profile")
         mode = Mode::profile;
       else

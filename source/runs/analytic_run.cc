@@ -6,6 +6,7 @@
 #include <cycloid/postprocess/report.h>
 #include <cycloid/runs/analytic_run.h>
 
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <iostream>
@@ -31,30 +32,19 @@ namespace cycloid
 
 
 
-    namespace
+    bool
+    show_state(const unsigned int k,
+               const unsigned int n_k,
+               const unsigned int t,
+               const unsigned int n_t)
     {
-      /**
-       * Whether the console shows the state of crank angle @p k of @p n_k
-       * and torque @p t of @p n_t: all of a short run; of a long one, every
-       * torque at about ten crank angles including the first and last, so
-       * every torque is seen while the run goes (a torque cycle of more
-       * than 20 states: about twenty of them, at the first and the last
-       * crank angle).
-       */
-      bool
-      print_state(const unsigned int k,
-                  const unsigned int n_k,
-                  const unsigned int t,
-                  const unsigned int n_t)
-      {
-        if (n_k * n_t <= 20)
-          return true;
-        if (n_t > 20)
-          return (k == 0 || k + 1 == n_k) &&
-                 (t % (n_t / 20) == 0 || t + 1 == n_t);
-        return k % std::max(1u, n_k / 10) == 0 || k + 1 == n_k;
-      }
-    } // namespace
+      if (n_k * n_t <= 20)
+        return true;
+      if (n_t > 20)
+        return (k == 0 || k + 1 == n_k) &&
+               (t % (n_t / 20) == 0 || t + 1 == n_t);
+      return k % std::max(1u, n_k / 10) == 0 || k + 1 == n_k;
+    }
 
 
 
@@ -141,7 +131,7 @@ namespace cycloid
               dealii::Utilities::System::get_memory_stats(stats);
               state.peak_memory_MB = stats.VmHWM / 1024.; // rank 0 only
               report.write(state, torques[t]);
-              if (print_state(
+              if (show_state(
                     step / torques.size(), angles.size(), t, torques.size()))
                 report.print(state,
                              "  state " + std::to_string(step + 1) + "/" +

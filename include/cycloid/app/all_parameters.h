@@ -15,6 +15,7 @@
 #include <cycloid/parameters/run.h>
 #include <cycloid/parameters/scene.h>
 #include <cycloid/profile/profile_parameters.h>
+#include <cycloid/reduced/reduced_parameters.h>
 
 #include <map>
 #include <set>
@@ -47,6 +48,8 @@ namespace cycloid
       dynamics::TransientParameters transient;
       /** Subsection Profile (Run = profile). */
       profile::ProfileParameters profile;
+      /** Subsection Reduced (Run = reduced). */
+      reduced::ReducedParameters reduced;
 
       /**
        * Every entry with the value this run uses, as a parameter file

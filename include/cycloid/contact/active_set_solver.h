@@ -37,6 +37,13 @@ namespace cycloid
       const std::vector<dealii::types::global_dof_index> &fixed;
       /** DoFs moved by beta * g and their g. */
       const std::map<dealii::types::global_dof_index, double> &load;
+
+      /** Add the supports of every state to @p c: the fixed DoFs, the load
+       * DoFs at beta * g and the ties (DoFs already constrained, e.g. by
+       * hanging nodes, keep their constraint). */
+      void
+      add_supports(dealii::AffineConstraints<double> &c,
+                   const double                       beta) const;
     };
 
     /**

@@ -126,6 +126,17 @@ namespace cycloid
       transfer_active_set(
         const std::vector<std::pair<SlaveNode<dim>, bool>> &snapshot);
 
+      /**
+       * Assemble the operator of the bodies as every state holds them (the
+       * fixed DoFs, the load DoFs at rest, the ties) without any contact
+       * constraint: the operator a reduced model condenses onto the contact
+       * points. The caller sets its right-hand sides
+       * (elasticity_problem().set_right_hand_side()) and solves with
+       * elasticity_problem().solve_set(0, ...); one preconditioner serves
+       * them all.
+       */
+      void
+      assemble_without_contact();
       /** Solve for the target generalised reaction (load control). */
       ContactState
       solve_load(const double target, const std::string &label);

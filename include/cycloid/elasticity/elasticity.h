@@ -26,6 +26,9 @@
 
 #include <Epetra_MultiVector.h>
 
+class Amesos_BaseSolver;
+class Epetra_LinearProblem;
+
 namespace cycloid
 {
   namespace elasticity
@@ -39,8 +42,20 @@ namespace cycloid
        * much the rotations matter). */
       cg_amg_translations_only,
       /** Direct sparse solver (Amesos KLU). */
-      direct
+      direct,
+      /** Direct sparse solver (Amesos MUMPS, parallel): for many
+       * right-hand sides of one 3D matrix (the reduced model's load
+       * cases), where KLU's fill-in is too costly. */
+      direct_mumps
     };
+
+    /** Whether @p solver is a direct (factorising) solver. */
+    inline bool
+    is_direct(const LinearSolver solver)
+    {
+      return solver == LinearSolver::direct ||
+             solver == LinearSolver::direct_mumps;
+    }
 
     /**
      * @brief Terms of a time-discrete (effective) operator: the matrix
@@ -164,6 +179,33 @@ namespace cycloid
                 const double                           relative_tolerance,
                 dealii::TrilinosWrappers::MPI::Vector &u);
 
+      /**
+       * Solve constraint set 0's matrix for every right-hand side of
+       * @p rhs (owned, condensed as for set_right_hand_side()) with one
+       * MUMPS factorisation and blocked solves (@p block right-hand sides
+       * at a time: one multi-vector solve costs far less than as many
+       * single ones); returns the solutions with ghosts, set 0's
+       * constraints distributed. The factorisation is kept for the next
+       * call until the matrix is assembled again. For the many load cases
+       * of one matrix (the reduced model's condensation).
+       */
+      std::vector<dealii::TrilinosWrappers::MPI::Vector>
+      solve_many(const std::vector<dealii::TrilinosWrappers::MPI::Vector> &rhs,
+                 const unsigned int block = 64);
+
+      /**
+       * Replace the right-hand side of constraint set @p k by @p rhs (owned
+       * entries, already condensed with that set's constraints, e.g. by
+       * its distribute_local_to_global()), for loads that are not
+       * tractions on a whole boundary id (the reduced model's contact
+       * loads). Keeps the matrix and the preconditioner.
+       */
+      void
+      set_right_hand_side(const unsigned int                           k,
+                          const dealii::TrilinosWrappers::MPI::Vector &rhs)
+      {
+        rhs_sets.at(k) = rhs;
+      }
       /**
        * Use the effective operator of @p terms from the next assemble_sets()
        * on (matrix, the first set's right-hand side, effective_forces() and
@@ -366,6 +408,11 @@ namespace cycloid
       } ready = Ready::none;
       std::unique_ptr<dealii::SolverControl>                  direct_control;
       std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> direct;
+      /** solve_many()'s linear problem and MUMPS factorisation, kept for
+       * later calls while the matrix stays (reset with it); shared_ptr
+       * holds Amesos' types without their headers here. */
+      std::shared_ptr<Epetra_LinearProblem> many_problem;
+      std::shared_ptr<Amesos_BaseSolver>    many_solver;
     };
   } // namespace elasticity
 } // namespace cycloid

@@ -22,6 +22,7 @@ namespace cycloid
         quasi_static,
         phase_sweep,
         transient,
+        reduced,
         profile
       };
 
@@ -35,7 +36,7 @@ namespace cycloid
       bool write_solution = true;
 
       /** Whether the run mode is an FE run (mesh, quasi-static,
-       * phase-sweep, transient). */
+       * phase-sweep, transient, and reduced, whose coarse model is one). */
       bool
       fe() const
       {

@@ -18,6 +18,19 @@ namespace cycloid
   namespace runs
   {
     /**
+     * Whether the console shows the state of crank angle @p k of @p n_k
+     * and torque @p t of @p n_t (runs of many cheap states): all of a short
+     * run; of a long one, every torque at about ten crank angles including
+     * the first and last; a torque cycle of more than 20 states: about
+     * twenty of them, at the first and the last crank angle.
+     */
+    bool
+    show_state(const unsigned int k,
+               const unsigned int n_k,
+               const unsigned int t,
+               const unsigned int n_t);
+
+    /**
      * @brief `Run = analytic`: the analytical model over every crank angle
      * of `Loading` and every torque (torques warm-started from the
      * previous state), on rank 0 only (other ranks check the geometry

@@ -1,0 +1,118 @@
+#ifndef cycloid_reduced_load_distribution_h
+#define cycloid_reduced_load_distribution_h
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <cycloid/reduced/local_contact.h>
+
+#include <functional>
+#include <utility>
+#include <vector>
+
+namespace cycloid
+{
+  namespace reduced
+  {
+    /** @brief One contact of the complementarity problem. */
+    struct ContactPair
+    {
+      /** Moment arm about the disc centre [mm] (ContactPoint's contact). */
+      double arm = 0;
+      /** Initial clearance [mm]. */
+      double clearance = 0;
+      /**
+       * Gap [mm] and arm [mm] of the pin against the disc turned rigidly
+       * by beta [rad]. Empty: the linear c - beta l with the unloaded arm.
+       * The exact one lets the contact point slide along the flank as the
+       * disc turns: on a nearly conformal pair (pin in a concave flank)
+       * the first touching point moves by tens of micrometres and its arm
+       * by a few per cent (measured against the FE model, which resolves
+       * it).
+       */
+      std::function<std::pair<double, double>(double)> rigid_gap;
+      /** Length of the line contact the force acts on (2D: the tooth
+       * width; 3D: the slice) [mm]. */
+      double length = 1;
+      /** Its near field. */
+      LocalContact law{1., 1., 1.};
+    };
+
+    /** @brief A solved load state of the reduced model. */
+    struct ReducedSolution
+    {
+      /** Force of each contact [N] (>= 0). */
+      std::vector<double> force;
+      /** Rotation beta of the discs [rad]. */
+      double rotation = 0;
+      /** dT/dbeta at the solution [N mm/rad]. */
+      double k_tangent = 0;
+      /** Own compliance C(i,i) + h_i'(F_i) of each contact [mm/N]. */
+      std::vector<double> compliance;
+      /** Newton iterations over all active sets. */
+      unsigned int iterations = 0;
+      /** Active sets tried. */
+      unsigned int active_sets = 0;
+    };
+
+    /**
+     * @brief The load distribution of the reduced model: find the forces
+     * F_i >= 0 and the one rotation beta shared by every disc such that
+     * each gap
+     * @f[ g_i = c_i - \beta l_i + \sum_j C_{ij} F_j + h_i(F_i) \ge 0,
+     *     \qquad F_i g_i = 0, \qquad \sum_i F_i l_i = T , @f]
+     * where c_i - beta l_i is, more exactly, the gap of the rigidly turned
+     * disc and l_i its arm (ContactPair::rigid_gap).
+     * A primal-dual active set over the contacts (a contact with F_i < 0
+     * leaves, one with g_i < 0 enters) with a Newton iteration on the
+     * nonlinear h for each set; the set is exact, not a fixed-point guess.
+     * A set seen twice (cycling) or the iteration limit is an error.
+     */
+    class ComplementaritySolver
+    {
+    public:
+      /** @p compliance C [mm/N] (symmetric positive definite) of @p pairs. */
+      ComplementaritySolver(const dealii::FullMatrix<double> &compliance,
+                            const std::vector<ContactPair>   &pairs,
+                            const double                      tolerance,
+                            const unsigned int                max_iterations);
+
+      /** Solve for torque @p torque [N mm], the first active set the
+       * contacts that rotation @p beta_guess [rad] closes. */
+      ReducedSolution
+      solve(const double torque, const double beta_guess) const;
+
+    private:
+      /** Gap and arm of contact @p i at rotation @p beta (rigid_gap or the
+       * linear one). */
+      std::pair<double, double>
+      rigid_gap(const unsigned int i, const double beta) const;
+      /** dl_i/dbeta [mm/rad] (0 for the linear gap). */
+      double
+      arm_slope(const unsigned int i, const double beta) const;
+      /** Near-field approach h_i(F) [mm], extended linearly below the
+       * force @p floor [N] (its slope is infinite at 0). */
+      double
+      approach(const unsigned int i,
+               const double       force,
+               const double       floor) const;
+      /** dh_i/dF [mm/N], constant below @p floor. */
+      double
+      slope(const unsigned int i, const double force, const double floor) const;
+      /** Newton on the active set @p active: forces @p F and rotation
+       * @p beta updated in place; returns the iterations. */
+      unsigned int
+      newton(const std::vector<unsigned int> &active,
+             const double                     torque,
+             const double                     floor,
+             std::vector<double>             &F,
+             double                          &beta) const;
+
+      const dealii::FullMatrix<double> C;
+      const std::vector<ContactPair>   pairs;
+      const double                     tolerance;
+      const unsigned int               max_iterations;
+    };
+  } // namespace reduced
+} // namespace cycloid
+
+#endif

@@ -1,0 +1,127 @@
+#include <deal.II/base/mpi.h>
+
+#include <cycloid/mesh/mesh_request.h>
+#include <cycloid/reduced/coarse_model.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+namespace cycloid
+{
+  namespace reduced
+  {
+    double
+    ReducedSettings::load_half_width() const
+    {
+      if (reduced.load_half_width > 0)
+        return reduced.load_half_width;
+      // Four elements of the refined contact zone across w, at most a third
+      // of the pin radius: the law is exact for a half-space and holds to
+      // order (w/R)^2 on the curved bodies.
+      return std::min(4. * stage.mesh.contact_size /
+                        std::pow(2.,
+                                 reduced.refinements(stage.scene.dimension)),
+                      stage.geometry.pin_radius / 3.);
+    }
+
+
+
+    namespace
+    {
+      /** The coarse model's scene: refined at the loaded pins to resolve
+       * the probing load, no adaptive cycles, silent. */
+      stage::StageSettings
+      coarse_settings(const ReducedSettings &settings, const int load_sign)
+      {
+        stage::StageSettings s = settings.stage;
+        s.mesh.contact_refinements =
+          settings.reduced.refinements(s.scene.dimension);
+        if (s.scene.dimension == 3)
+          s.mesh.axial_layers = settings.reduced.axial_layers;
+        s.mesh.contact_refinement_radius =
+          std::max(s.mesh.contact_refinement_radius,
+                   2. * settings.load_half_width());
+        s.mesh.refine_loaded_side_only = load_sign != 0;
+        s.mesh.adaptive_cycles         = 0;
+        s.quiet                        = true;
+        return s;
+      }
+
+      /** The mesh request: placement, the crank sweep its fine zones
+       * cover, the loaded side. */
+      mesh::MeshRequest
+      coarse_request(const double psi, const double sweep, const int load_sign)
+      {
+        mesh::MeshRequest request;
+        request.crank_angle = psi;
+        request.sweep       = sweep;
+        request.load_sign   = load_sign;
+        return request;
+      }
+    } // namespace
+
+
+
+    template <int dim>
+    CoarseModel<dim>::CoarseModel(const ReducedSettings &settings,
+                                  const double           psi,
+                                  const double           sweep,
+                                  const int              load_sign,
+                                  const MPI_Comm         comm)
+      : settings(settings)
+      , psi_mesh(psi)
+      , timing(MPI_COMM_SELF,
+               std::cout,
+               dealii::TimerOutput::never,
+               dealii::TimerOutput::wall_times)
+      , scene(coarse_settings(settings, load_sign),
+              coarse_request(psi, sweep, load_sign),
+              comm)
+      , n_dofs(scene.contact_problem().elasticity_problem().n_dofs())
+    {
+      dealii::TimerOutput::Scope scope(timing, "reduced: assembly");
+      scene.contact_problem().assemble_without_contact();
+    }
+
+
+
+    template <int dim>
+    Compliance
+    CoarseModel<dim>::condense(const std::vector<ContactPoint> &points,
+                               std::ostream                    *progress)
+    {
+      // One factorisation serves every load case: KLU in 2D, MUMPS in 3D
+      // (KLU's fill-in on a 3D mesh costs minutes; CG+AMG needs ~100
+      // iterations a load case on the glued pins and housing).
+      const auto solver = dim == 2 ? elasticity::LinearSolver::direct :
+                                     elasticity::LinearSolver::direct_mumps;
+      return condense_compliance(scene.contact_problem(),
+                                 points,
+                                 settings.load_half_width(),
+                                 solver,
+                                 settings.stage.contact.solver_tolerance,
+                                 timing,
+                                 progress);
+    }
+
+
+
+    template <int dim>
+    std::map<std::string, double>
+    CoarseModel<dim>::stage_times()
+    {
+      auto times =
+        scene.timer().get_summary_data(dealii::TimerOutput::total_wall_time);
+      for (const auto &[name, t] :
+           timing.get_summary_data(dealii::TimerOutput::total_wall_time))
+        times[name] += t;
+      return times;
+    }
+
+
+
+    template class CoarseModel<2>;
+    template class CoarseModel<3>;
+  } // namespace reduced
+} // namespace cycloid

@@ -1,0 +1,253 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <cycloid/reduced/load_distribution.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+namespace cycloid
+{
+  namespace reduced
+  {
+    ComplementaritySolver::ComplementaritySolver(
+      const dealii::FullMatrix<double> &compliance,
+      const std::vector<ContactPair>   &pairs,
+      const double                      tolerance,
+      const unsigned int                max_iterations)
+      : C(compliance)
+      , pairs(pairs)
+      , tolerance(tolerance)
+      , max_iterations(max_iterations)
+    {
+      AssertThrow(C.m() == pairs.size() && C.n() == pairs.size(),
+                  dealii::ExcInternalError());
+    }
+
+
+
+    std::pair<double, double>
+    ComplementaritySolver::rigid_gap(const unsigned int i,
+                                     const double       beta) const
+    {
+      const ContactPair &p = pairs[i];
+      if (p.rigid_gap)
+        return p.rigid_gap(beta);
+      return {p.clearance - beta * p.arm, p.arm};
+    }
+
+
+
+    double
+    ComplementaritySolver::arm_slope(const unsigned int i,
+                                     const double       beta) const
+    {
+      if (!pairs[i].rigid_gap)
+        return 0.;
+      // Central difference over a step small against the rotations of a
+      // loaded state (1e-4 rad and more) and large against round-off.
+      const double h = 1e-7;
+      return (rigid_gap(i, beta + h).second - rigid_gap(i, beta - h).second) /
+             (2. * h);
+    }
+
+
+
+    double
+    ComplementaritySolver::approach(const unsigned int i,
+                                    const double       force,
+                                    const double       floor) const
+    {
+      const ContactPair &p = pairs[i];
+      if (force >= floor)
+        return p.law.approach(force / p.length);
+      return p.law.approach(floor / p.length) +
+             slope(i, floor, floor) * (force - floor);
+    }
+
+
+
+    double
+    ComplementaritySolver::slope(const unsigned int i,
+                                 const double       force,
+                                 const double       floor) const
+    {
+      const ContactPair &p = pairs[i];
+      return p.law.slope(std::max(force, floor) / p.length) / p.length;
+    }
+
+
+
+    unsigned int
+    ComplementaritySolver::newton(const std::vector<unsigned int> &active,
+                                  const double                     torque,
+                                  const double                     floor,
+                                  std::vector<double>             &F,
+                                  double                          &beta) const
+    {
+      const unsigned int m = active.size();
+      for (unsigned int it = 1; it <= max_iterations; ++it)
+        {
+          // Residual: gap of each active contact, then the torque balance.
+          dealii::Vector<double>           r(m + 1);
+          dealii::LAPACKFullMatrix<double> J(m + 1, m + 1);
+          for (unsigned int a = 0; a < m; ++a)
+            {
+              const unsigned int i  = active[a];
+              const auto [gap, arm] = rigid_gap(i, beta);
+              r(a)                  = gap + approach(i, F[i], floor);
+              for (unsigned int b = 0; b < m; ++b)
+                {
+                  r(a) += C(i, active[b]) * F[active[b]];
+                  J(a, b) = C(i, active[b]);
+                }
+              J(a, a) += slope(i, F[i], floor);
+              J(a, m) = -arm;
+              J(m, a) = arm;
+              J(m, m) += F[i] * arm_slope(i, beta);
+              r(m) += arm * F[i];
+            }
+          r(m) -= torque;
+          J.compute_lu_factorization();
+          J.solve(r);
+          double step = 0, scale = 0;
+          for (unsigned int a = 0; a < m; ++a)
+            {
+              F[active[a]] -= r(a);
+              step  = std::max(step, std::abs(r(a)));
+              scale = std::max(scale, std::abs(F[active[a]]));
+            }
+          beta -= r(m);
+          if (step <= tolerance * scale &&
+              std::abs(r(m)) <= tolerance * std::abs(beta))
+            return it;
+        }
+      AssertThrow(false,
+                  dealii::ExcMessage(
+                    "reduced model: the Newton iteration of the load "
+                    "distribution did not converge in " +
+                    std::to_string(max_iterations) +
+                    " iterations (Analytic/Maximum iterations)."));
+      return max_iterations;
+    }
+
+
+
+    ReducedSolution
+    ComplementaritySolver::solve(const double torque,
+                                 const double beta_guess) const
+    {
+      const unsigned int n = pairs.size();
+      ReducedSolution    s;
+      s.force.assign(n, 0.);
+      s.compliance.assign(n, 0.);
+      s.rotation = beta_guess;
+      if (torque == 0 || n == 0)
+        return s;
+      double arms = 0;
+      for (const ContactPair &p : pairs)
+        arms += std::abs(p.arm);
+      const double floor = 1e-9 * std::abs(torque) / arms;
+
+      std::vector<unsigned int> active;
+      for (unsigned int i = 0; i < n; ++i)
+        if (rigid_gap(i, beta_guess).first < 0 && beta_guess * torque > 0)
+          active.push_back(i);
+      if (active.empty())
+        {
+          // The contact with the smallest clearance per arm on the loaded
+          // side closes first.
+          unsigned int best = n;
+          for (unsigned int i = 0; i < n; ++i)
+            if (pairs[i].arm * torque > 0 &&
+                (best == n ||
+                 pairs[i].clearance / std::abs(pairs[i].arm) <
+                   pairs[best].clearance / std::abs(pairs[best].arm)))
+              best = i;
+          AssertThrow(best < n,
+                      dealii::ExcMessage("reduced model: no contact can "
+                                         "carry a torque of this sign."));
+          active.push_back(best);
+        }
+      std::set<std::vector<unsigned int>> seen;
+      std::vector<double>                 F(n, 0.);
+      // Start from one force on every active contact that carries the
+      // torque (not T / (n l_i): a contact at the root has l_i ~ 0).
+      double active_arms = 0;
+      for (const unsigned int i : active)
+        active_arms += rigid_gap(i, beta_guess).second;
+      for (const unsigned int i : active)
+        F[i] = torque / active_arms;
+      while (true)
+        {
+          AssertThrow(seen.insert(active).second,
+                      dealii::ExcMessage(
+                        "reduced model: the active set of the load "
+                        "distribution cycles (a set repeated after " +
+                        std::to_string(seen.size()) + " sets)."));
+          s.iterations += newton(active, torque, floor, F, s.rotation);
+          ++s.active_sets;
+          std::vector<unsigned int> next;
+          std::vector<bool>         is_active(n, false);
+          for (const unsigned int i : active)
+            is_active[i] = true;
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              if (is_active[i])
+                {
+                  if (F[i] > 0)
+                    next.push_back(i);
+                  continue;
+                }
+              double gap = rigid_gap(i, s.rotation).first;
+              for (const unsigned int j : active)
+                gap += C(i, j) * F[j];
+              if (gap < 0)
+                next.push_back(i);
+            }
+          if (next == active)
+            break;
+          for (unsigned int i = 0; i < n; ++i)
+            if (!std::binary_search(next.begin(), next.end(), i))
+              F[i] = 0;
+            else if (F[i] <= 0)
+              F[i] = floor;
+          active = next;
+          AssertThrow(!active.empty(),
+                      dealii::ExcMessage("reduced model: every contact left "
+                                         "the active set."));
+        }
+
+      // Tangent dT/dbeta = l^T (C + H')^-1 l on the final set.
+      const unsigned int               m = active.size();
+      dealii::LAPACKFullMatrix<double> J(m, m);
+      dealii::Vector<double>           l(m), x(m);
+      for (unsigned int a = 0; a < m; ++a)
+        {
+          for (unsigned int b = 0; b < m; ++b)
+            J(a, b) = C(active[a], active[b]);
+          J(a, a) += slope(active[a], F[active[a]], floor);
+          l(a) = rigid_gap(active[a], s.rotation).second;
+        }
+      J.compute_lu_factorization();
+      x = l;
+      J.solve(x);
+      // dT/dbeta with the gaps held closed: l^T (C + H')^-1 l, plus the
+      // turning of the arms as the contact points slide.
+      s.k_tangent = l * x;
+      for (const unsigned int i : active)
+        s.k_tangent += F[i] * arm_slope(i, s.rotation);
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          s.force[i] = std::max(F[i], 0.);
+          s.compliance[i] =
+            C(i, i) + (s.force[i] > 0 ? slope(i, s.force[i], floor) : 0.);
+        }
+      return s;
+    }
+  } // namespace reduced
+} // namespace cycloid

@@ -1,0 +1,199 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <cycloid/postprocess/report.h>
+#include <cycloid/runs/analytic_run.h>
+#include <cycloid/runs/reduced_run.h>
+#include <cycloid/stage/stage_scene.h>
+
+#include <chrono>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+namespace cycloid
+{
+  namespace runs
+  {
+    namespace u = results::units;
+
+    namespace
+    {
+      using Clock = std::chrono::steady_clock;
+
+      /** Seconds since @p start. */
+      double
+      seconds_since(const Clock::time_point start)
+      {
+        return std::chrono::duration<double>(Clock::now() - start).count();
+      }
+    } // namespace
+
+
+
+    template <int dim>
+    ReducedRun<dim>::ReducedRun(const Settings &settings, const MPI_Comm comm)
+      : settings(settings)
+      , comm(comm)
+      , model(settings.model.stage.model_settings())
+    {}
+
+
+
+    template <int dim>
+    int
+    ReducedRun<dim>::load_sign() const
+    {
+      bool positive = false, negative = false;
+      for (const double t : settings.loading.torque_values())
+        {
+          positive |= t > 0;
+          negative |= t < 0;
+        }
+      return positive && negative ? 0 : (negative ? -1 : 1);
+    }
+
+
+
+    template <int dim>
+    void
+    ReducedRun<dim>::run()
+    {
+      const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      postprocess::Report::Options options;
+      options.directory = settings.model.stage.output_directory;
+      // No contact mesh, so no mesh-to-mesh noise between crank angles:
+      // the coarse model carries the far field only and its contact points
+      // move smoothly over one mesh; the first and last phase of a period
+      // differ by the crank holes, which stay with the disc (an FE sweep's
+      // periodic meshes turn them by a pin pitch instead).
+      options.discretised  = false;
+      options.torque_cycle = settings.loading.torque_cycle;
+      options.rated_torque = settings.loading.rated_torque;
+      options.lost_motion_fraction =
+        parameters::LoadingParameters::lost_motion_torque;
+      postprocess::Report       report(options, comm);
+      const std::vector<double> angles =
+        settings.loading.crank_angles(model.geometry().mesh_period());
+      const std::vector<double> torques  = settings.loading.torque_values();
+      const unsigned int        n_states = angles.size() * torques.size();
+      if (root)
+        std::cout << "cycloid-contact: reduced model, "
+                  << stage::description(settings.model.stage)
+                  << ", load half-width w = "
+                  << settings.model.load_half_width() << " mm, "
+                  << angles.size() << " crank angle(s) x " << torques.size()
+                  << " torque(s)" << std::endl;
+
+      const auto start = Clock::now();
+      // One coarse model for every crank angle: meshed at the first, its
+      // fine zones along the contact paths to the last.
+      reduced::CoarseModel<dim> coarse(settings.model,
+                                       angles.front(),
+                                       angles.back() - angles.front(),
+                                       load_sign(),
+                                       comm);
+      double                    mesh_s = seconds_since(start);
+      if (root)
+        std::cout << "  coarse model: " << coarse.dofs() << " DoFs, built in "
+                  << mesh_s << " s" << std::endl;
+      // A long condensation (3D) shows its progress.
+      std::ostream *progress = root && dim == 3 ? &std::cout : nullptr;
+      // A sweep of more crank angles than anchors condenses at the anchors
+      // only and interpolates the compliance in between.
+      const unsigned int n_anchors = settings.model.reduced.anchor_angles;
+      std::unique_ptr<reduced::CompliancePath<dim>> path;
+      if (n_anchors >= 2 && n_anchors < angles.size())
+        {
+          std::vector<double> anchors;
+          for (unsigned int a = 0; a < n_anchors; ++a)
+            anchors.push_back(angles.front() +
+                              (angles.back() - angles.front()) * a /
+                                (n_anchors - 1));
+          if (root)
+            std::cout << "  condensing at " << n_anchors
+                      << " anchor angles, interpolated over " << angles.size()
+                      << " crank angles" << std::endl;
+          path = std::make_unique<reduced::CompliancePath<dim>>(
+            settings.model, coarse, anchors, angles, load_sign(), progress);
+        }
+      unsigned int step = 0;
+      double       beta = 0;
+      for (unsigned int k = 0; k < angles.size(); ++k)
+        {
+          auto       start_angle = Clock::now();
+          const auto phase =
+            path ? std::make_unique<reduced::ReducedModel<dim>>(
+                     settings.model, coarse, angles[k], load_sign(), *path) :
+                   std::make_unique<reduced::ReducedModel<dim>>(
+                     settings.model, coarse, angles[k], load_sign(), progress);
+          // The first crank angle's states carry the coarse model's cost.
+          double setup_s = seconds_since(start_angle) + mesh_s;
+          mesh_s         = 0;
+          if (root && (k == 0 || show_state(k, angles.size(), 0, 1)))
+            std::cout << "  crank angle " << angles[k] * u::deg_per_rad
+                      << " deg: " << phase->n_contacts()
+                      << (path ? " contacts interpolated in " :
+                                 " contacts condensed in ")
+                      << seconds_since(start_angle) << " s (asymmetry "
+                      << phase->compliance().asymmetry << ")" << std::endl;
+          for (unsigned int t = 0; t < torques.size(); ++t, ++step)
+            {
+              const auto          start_state = Clock::now();
+              analytic::LoadState load;
+              try
+                {
+                  load =
+                    settings.loading.torque_cycle && torques[t] == 0 ?
+                      phase->zero_torque_limit(
+                        parameters::LoadingParameters::zero_side(torques, t)) :
+                      phase->solve(torques[t], beta);
+                }
+              catch (dealii::ExceptionBase &e)
+                {
+                  std::ostringstream info;
+                  e.print_info(info);
+                  AssertThrow(false,
+                              dealii::ExcMessage(
+                                "state " + std::to_string(step) +
+                                " (crank angle " +
+                                std::to_string(angles[k] * u::deg_per_rad) +
+                                " deg, torque " + std::to_string(torques[t]) +
+                                " N m): " + info.str()));
+                }
+              beta                      = load.rotation;
+              results::StageState state = phase->stage_state(load);
+              state.step                = step;
+              state.wall_s              = seconds_since(start_state) + setup_s;
+              setup_s                   = 0;
+              dealii::Utilities::System::MemoryStats stats;
+              dealii::Utilities::System::get_memory_stats(stats);
+              state.peak_memory_MB =
+                dealii::Utilities::MPI::sum(stats.VmHWM / 1024., comm);
+              report.write(state, torques[t]);
+              if (root && show_state(k, angles.size(), t, torques.size()))
+                report.print(state,
+                             "  state " + std::to_string(step + 1) + "/" +
+                               std::to_string(n_states) + ": ");
+            }
+        }
+      report.finish();
+      if (root)
+        {
+          std::cout << "  reduced model: " << n_states << " states in "
+                    << seconds_since(start) << " s; stages (all crank angles):";
+          for (const auto &[name, t] : coarse.stage_times())
+            std::cout << " " << name << " " << t << " s;";
+          std::cout << std::endl;
+        }
+    }
+
+
+
+    template class ReducedRun<2>;
+    template class ReducedRun<3>;
+  } // namespace runs
+} // namespace cycloid
