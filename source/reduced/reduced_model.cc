@@ -81,28 +81,35 @@ namespace cycloid
 
 
 
+    std::set<PinKey>
+    carrying_pins(const analytic::StageModel &model,
+                  const double                psi,
+                  const int                   load_sign)
+    {
+      std::set<PinKey> pins;
+      for (const analytic::PinLoad &p : model.unloaded_pins(psi))
+        if (can_carry(model.geometry(), psi, p.contact, load_sign))
+          pins.insert({p.contact.disc, p.contact.pin});
+      return pins;
+    }
+
+
+
     template <int dim>
     ReducedModel<dim>::ReducedModel(const ReducedSettings &settings,
                                     CoarseModel<dim>      &coarse,
                                     const double           psi,
                                     const int              load_sign,
                                     std::ostream          *progress)
-      : settings(settings)
-      , psi(psi)
-      , model(settings.stage.model_settings())
-      , pins(model.unloaded_pins(psi))
-      , n_dofs(coarse.dofs())
-    {
-      select_contacts(coarse, [&](const geometry::PinContact &c) {
-        return can_carry(model.geometry(), psi, c, load_sign);
-      });
-      if (progress)
-        *progress << "    condensing " << points.size()
-                  << " contacts on the coarse model (" << n_dofs << " DoFs)"
-                  << std::endl;
-      condensed = coarse.condense(points, progress);
-      build_solver();
-    }
+      : ReducedModel(settings,
+                     coarse,
+                     psi,
+                     carrying_pins(analytic::StageModel(
+                                     settings.stage.model_settings()),
+                                   psi,
+                                   load_sign),
+                     progress)
+    {}
 
 
 
@@ -315,9 +322,8 @@ namespace cycloid
       const analytic::StageModel model(settings.stage.model_settings());
       std::set<PinKey>           pins;
       for (const double psi : angles)
-        for (const analytic::PinLoad &p : model.unloaded_pins(psi))
-          if (can_carry(model.geometry(), psi, p.contact, load_sign))
-            pins.insert({p.contact.disc, p.contact.pin});
+        for (const PinKey &k : carrying_pins(model, psi, load_sign))
+          pins.insert(k);
       for (const double psi : anchors)
         {
           const ReducedModel<dim> probe(settings, coarse, psi, pins, progress);

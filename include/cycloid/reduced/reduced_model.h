@@ -53,6 +53,13 @@ namespace cycloid
               const geometry::PinContact      &c,
               const int                        load_sign);
 
+    /** The pins of @p model's stage that can_carry() a torque of sign
+     * @p load_sign at crank angle @p psi [rad]. */
+    std::set<PinKey>
+    carrying_pins(const analytic::StageModel &model,
+                  const double                psi,
+                  const int                   load_sign);
+
     /**
      * @brief The reduced model of the stage at one crank angle: the
      * compliance of the scene's bodies (discs, pins, supports, housing)
