@@ -14,8 +14,9 @@ groups of 2; then for each grouped run:
   (relative), pin forces within 1e-7 of the state's largest, fluctuation.csv
   within 1e-7; the largest differences are printed (measured: doc/
   verification.md);
-* preconditioner_setups is the last column of stiffness.csv, between 1 and
-  the active-set iterations of each state;
+* stiffness.csv has preconditioner_setups, between 1 and the active-set
+  iterations of each state, and the error estimate's columns (issue #15),
+  each state with finite estimates or flagged;
 * solution.pvd lists solution-NNNN.pvtu of every state, in step order, and
   each .pvtu and its pieces exist;
 * the console has one progress line per state and the groups' busy times.
@@ -119,9 +120,18 @@ def compare(ref, d, label):
 
 def check_common(d, out, label, n_states, groups):
     s = rows(f"{d}/stiffness.csv")
-    check(header(f"{d}/stiffness.csv").endswith(",preconditioner_setups"),
-          f"{label}: preconditioner_setups is not the last column")
+    columns = header(f"{d}/stiffness.csv").split(",")
+    for c in ("preconditioner_setups", "K_secant_error", "K_tangent_error",
+              "max_pin_force_error", "mesh_warning"):
+        check(c in columns, f"{label}: stiffness.csv has no {c} column")
     for r in s:
+        # A state without an estimate (its coarser level failed: on this
+        # coarse mesh the coarsest level's active set cycles at 3 deg) must
+        # be flagged.
+        finite = all(math.isfinite(float(r[c])) for c in
+                     ("K_secant_error", "K_tangent_error", "max_pin_force_error"))
+        check(finite or r["mesh_warning"] == "1",
+              f"{label} step {r['step']}: no error estimate and not flagged")
         n = int(r["preconditioner_setups"])
         check(1 <= n <= int(r["active_set_iterations"]),
               f"{label} step {r['step']}: {n} preconditioner set-ups for {r['active_set_iterations']} iterations")

@@ -322,8 +322,24 @@ TEST(Parameters, NumberOfDiscsAutoFollowsTheRun)
   EXPECT_TRUE(analytic.notes.empty());
   const auto fe_2d = parsed("set Run = quasi-static");
   EXPECT_EQ(fe_2d.scene.n_discs, 1u);
-  ASSERT_EQ(fe_2d.notes.size(), 1u);
+  ASSERT_EQ(fe_2d.notes.size(), 2u);
   EXPECT_EQ(fe_2d.notes[0], "2D FE: one disc (Scene/Number of discs = auto)");
+  // The 2D error estimate (Mesh/Error estimate = auto) raises the default
+  // Contact refinements to its levels, and says so.
+  EXPECT_EQ(fe_2d.mesh.contact_refinements, 2u);
+  EXPECT_EQ(fe_2d.notes[1].rfind("Mesh/Error estimate: Contact refinements "
+                                 "raised from 0 to 2",
+                                 0),
+            0u);
+  EXPECT_EQ(parsed("set Run = quasi-static\nsubsection Mesh\nset Error "
+                   "estimate = false\nend")
+              .mesh.contact_refinements,
+            0u);
+  EXPECT_EQ(parsed("set Run = transient").mesh.contact_refinements, 0u);
+  EXPECT_EQ(parsed("set Run = quasi-static\nsubsection Scene\nset "
+                   "Dimension = 3\nend")
+              .mesh.contact_refinements,
+            0u);
   EXPECT_EQ(parsed("set Run = mesh").scene.n_discs, 1u);
   EXPECT_EQ(parsed("set Run = transient").scene.n_discs, 1u);
   EXPECT_EQ(parsed(

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
 #include <vector>
 
 using namespace cycloid;
@@ -34,6 +35,11 @@ namespace
     s.dofs                  = 6000000001ul;
     s.wall_s                = 2.718281828459045;
     s.peak_memory_MB        = 1234.5;
+    s.error.k_secant        = 0.0123;
+    s.error.k_tangent       = 0.0456;
+    s.error.max_pin_force   = 0.0789;
+    s.error.contact_level   = 3;
+    s.error.failure         = "x";
     for (unsigned int j = 0; j < n_pins; ++j)
       {
         results::PinState p;
@@ -55,6 +61,8 @@ namespace
         p.hertz_pressure    = 1400. * x;
         p.max_shear_stress  = 450. * x;
         p.max_shear_depth   = 0.16 * x;
+        p.active_nodes      = 17 + j;
+        p.fn_error          = 0.17 * x;
         s.pins.push_back(p);
       }
     return s;
@@ -69,12 +77,18 @@ TEST(StateBuffer, StructsHaveTheFieldsThePackingKnows)
   // for_each_field()/for_each_pin_field() (source/results/state_buffer.cc)
   // and to distinct_state() above, then update the sizes.
   EXPECT_EQ(sizeof(results::PinState),
-            2 * sizeof(unsigned int) + 16 * sizeof(double));
+            2 * sizeof(unsigned int) + 16 * sizeof(double) +
+              2 * sizeof(unsigned int) /* active_nodes + padding */ +
+              sizeof(double));
+  EXPECT_EQ(sizeof(results::ErrorEstimate),
+            3 * sizeof(double) +
+              2 * sizeof(unsigned int) /* contact_level + padding */ +
+              sizeof(std::string));
   EXPECT_EQ(sizeof(results::StageState),
             2 * sizeof(unsigned int) /* step + padding */ + 6 * sizeof(double) +
               sizeof(std::vector<results::PinState>) +
-              2 * sizeof(unsigned int) + 2 * sizeof(unsigned long) +
-              2 * sizeof(double));
+              sizeof(results::ErrorEstimate) + 2 * sizeof(unsigned int) +
+              2 * sizeof(unsigned long) + 2 * sizeof(double));
 }
 
 
@@ -85,7 +99,7 @@ TEST(StateBuffer, EveryFieldComesBackExactly)
     {
       const results::StageState a      = distinct_state(n_pins);
       const std::vector<double> buffer = results::StateBuffer::pack(a);
-      EXPECT_EQ(buffer.size(), 14u + 18u * n_pins);
+      EXPECT_EQ(buffer.size(), 19u + 20u * n_pins);
       const results::StageState b = results::StateBuffer::unpack(buffer);
       EXPECT_EQ(b.step, a.step);
       EXPECT_EQ(b.crank, a.crank);
@@ -100,6 +114,11 @@ TEST(StateBuffer, EveryFieldComesBackExactly)
       EXPECT_EQ(b.dofs, a.dofs);
       EXPECT_EQ(b.wall_s, a.wall_s);
       EXPECT_EQ(b.peak_memory_MB, a.peak_memory_MB);
+      EXPECT_EQ(b.error.k_secant, a.error.k_secant);
+      EXPECT_EQ(b.error.k_tangent, a.error.k_tangent);
+      EXPECT_EQ(b.error.max_pin_force, a.error.max_pin_force);
+      EXPECT_EQ(b.error.contact_level, a.error.contact_level);
+      EXPECT_FALSE(b.error.failure.empty());
       ASSERT_EQ(b.pins.size(), a.pins.size());
       for (unsigned int j = 0; j < n_pins; ++j)
         {
@@ -121,6 +140,8 @@ TEST(StateBuffer, EveryFieldComesBackExactly)
           EXPECT_EQ(q.hertz_pressure, p.hertz_pressure);
           EXPECT_EQ(q.max_shear_stress, p.max_shear_stress);
           EXPECT_EQ(q.max_shear_depth, p.max_shear_depth);
+          EXPECT_EQ(q.active_nodes, p.active_nodes);
+          EXPECT_EQ(q.fn_error, p.fn_error);
         }
       // The derived figures follow.
       EXPECT_EQ(b.pins_in_contact(), a.pins_in_contact());

@@ -67,9 +67,41 @@ namespace cycloid
       const std::string discs = scene.resolve_number_of_discs(run.fe());
       if (!discs.empty())
         notes.push_back(discs);
+      const std::string levels = resolve_error_estimate();
+      if (!levels.empty())
+        notes.push_back(levels);
       AssertThrow(scene.pin_core_radius < geometry.pin_radius,
                   dealii::ExcMessage("Scene/Pin core radius must be smaller "
                                      "than Geometry/Pin radius."));
+    }
+
+
+
+    std::string
+    AllParameters::resolve_error_estimate()
+    {
+      using M       = parameters::RunParameters::Mode;
+      auto      &e  = mesh.error;
+      const bool fe = run.mode == M::quasi_static ||
+                      run.mode == M::phase_sweep || run.mode == M::mesh;
+      if (!fe || !e.estimates(scene.dimension))
+        {
+          // Transient runs keep one mesh; the reduced model's coarse scene
+          // is no answer to estimate; 3D with auto and no target.
+          e.mode = mesh::ErrorControl::Mode::off;
+          return "";
+        }
+      e.mode                    = mesh::ErrorControl::Mode::on;
+      const unsigned int needed = mesh::ErrorControl::coarser_levels;
+      if (mesh.contact_refinements >= needed)
+        return "";
+      const unsigned int asked = mesh.contact_refinements;
+      mesh.contact_refinements = needed;
+      return "Mesh/Error estimate: Contact refinements raised from " +
+             std::to_string(asked) + " to " + std::to_string(needed) +
+             " (the estimate solves each state also with its finest contact "
+             "level coarsened once and twice; Error estimate = false keeps " +
+             std::to_string(asked) + ")";
     }
 
 

@@ -143,6 +143,22 @@ namespace cycloid
           {"Mesh/Adaptive refinement cycles",
            {Mode::reduced},
            "its coarse model is not refined adaptively"},
+          {"Mesh/Error estimate",
+           {Mode::mesh, Mode::transient, Mode::reduced},
+           "it estimates no FE state's error (transient: one mesh through "
+           "the run)"},
+          {"Mesh/Warning threshold",
+           {Mode::mesh, Mode::transient, Mode::reduced},
+           "it estimates no FE state's error (transient: one mesh through "
+           "the run)"},
+          {"Mesh/Target accuracy",
+           {Mode::mesh, Mode::transient, Mode::reduced},
+           "it estimates no FE state's error (transient: one mesh through "
+           "the run)"},
+          {"Mesh/Maximum accuracy cycles",
+           {Mode::mesh, Mode::transient, Mode::reduced},
+           "it estimates no FE state's error (transient: one mesh through "
+           "the run)"},
           {"Mesh/Axial layers per disc",
            {Mode::reduced},
            "its coarse model has Reduced/Axial layers per disc"},

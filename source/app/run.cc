@@ -45,6 +45,17 @@ namespace cycloid
         return {stage_settings(prm), prm.loading, prm.run.write_solution};
       }
 
+      /** @p s without the error estimate (runs that keep one mesh: the
+       * transient, whose mesh is not refined during the run, and the
+       * reduced model's coarse scene). */
+      template <typename Settings>
+      Settings
+      without_estimate(Settings s)
+      {
+        s.mesh.error.mode = mesh::ErrorControl::Mode::off;
+        return s;
+      }
+
       /** Make the output directory and write `parameters.prm` into it. */
       void
       prepare_output_directory(const AllParameters &prm, const MPI_Comm comm)
@@ -102,15 +113,19 @@ namespace cycloid
               return;
             case Mode::transient:
               build_and_run<runs::TransientRun<dim>>(
-                typename runs::TransientRun<dim>::Settings{fe_run_settings(prm),
-                                                           prm.transient},
+                typename runs::TransientRun<dim>::Settings{
+                  {without_estimate(stage_settings(prm)),
+                   prm.loading,
+                   prm.run.write_solution},
+                  prm.transient},
                 prm,
                 comm);
               return;
             case Mode::reduced:
               build_and_run<runs::ReducedRun<dim>>(
                 typename runs::ReducedRun<dim>::Settings{
-                  {stage_settings(prm), prm.reduced}, prm.loading},
+                  {without_estimate(stage_settings(prm)), prm.reduced},
+                  prm.loading},
                 prm,
                 comm);
               return;

@@ -90,6 +90,39 @@ namespace cycloid
                           "the cells (of every body) next to the active "
                           "contact nodes and solve again, this many times "
                           "[-]. Adds to the a-priori Contact refinements.");
+        prm.declare_entry(
+          "Error estimate",
+          "auto",
+          Selection("auto|true|false"),
+          "FE states: solve each state also with the mesh's finest contact "
+          "level coarsened once and twice, and report the larger of the "
+          "last change and half the change before it as the state's error "
+          "estimate (stiffness.csv K_secant_error, K_tangent_error, "
+          "max_pin_force_error; pin_forces.csv Fn_error_N). A mesh with "
+          "fewer than 2 Contact refinements is refined to 2. auto: on in "
+          "2D (the coarser solves add 8-46 %), off in 3D (there the "
+          "coarser levels have most of the DoFs and cost nearly as much as "
+          "the state) unless Target accuracy is set [-].");
+        prm.declare_entry("Warning threshold",
+                          "0.02",
+                          Double(0, 1),
+                          "FE states whose largest error estimate exceeds "
+                          "this are flagged (console warning naming the "
+                          "pins, stiffness.csv mesh_warning = 1) [relative, "
+                          "0.02 = 2 %].");
+        prm.declare_entry(
+          "Target accuracy",
+          "0",
+          Double(0, 1),
+          "FE states: refine at the active contacts and solve again until "
+          "every error estimate is below this, at most Maximum accuracy "
+          "cycles times per state (0: off; needs Error estimate) "
+          "[relative, 0.01 = 1 %].");
+        prm.declare_entry("Maximum accuracy cycles",
+                          "4",
+                          Integer(1, 10),
+                          "Refinement cycles that Target accuracy may add "
+                          "to one state [-].");
         prm.declare_entry("Periodic meshes",
                           "true",
                           Bool(),
@@ -134,12 +167,23 @@ namespace cycloid
         degree          = prm.get_integer("Polynomial degree");
         periodic        = prm.get_bool("Periodic meshes");
         adaptive_cycles = prm.get_integer("Adaptive refinement cycles");
+        const std::string estimate = prm.get("Error estimate");
+        error.mode = estimate == "auto" ? ErrorControl::Mode::automatic :
+                     estimate == "true" ? ErrorControl::Mode::on :
+                                          ErrorControl::Mode::off;
+        error.warning_threshold = prm.get_double("Warning threshold");
+        error.target_accuracy   = prm.get_double("Target accuracy");
+        error.max_cycles        = prm.get_integer("Maximum accuracy cycles");
       }
       prm.leave_subsection();
       AssertThrow(contact_size <= flank_size && flank_size <= coarse_size,
                   dealii::ExcMessage(
                     "Mesh: need Contact element size <= Flank element size "
                     "<= Coarse element size."));
+      AssertThrow(
+        error.mode != ErrorControl::Mode::off || error.target_accuracy == 0,
+        dealii::ExcMessage(
+          "Mesh: Target accuracy needs Error estimate = auto or true."));
       AssertThrow(contact_size <= pin_size,
                   dealii::ExcMessage("Mesh: need Contact element size <= Pin "
                                      "element size."));

@@ -5,12 +5,14 @@
 
 #include <cycloid/postprocess/report.h>
 #include <cycloid/postprocess/sweep_noise.h>
+#include <cycloid/results/error_estimate.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 namespace cycloid
 {
@@ -26,7 +28,9 @@ namespace cycloid
              "wall_s,K_secant_Nm_per_arcmin,K_tangent_Nm_per_arcmin,"
              "takeup_rad,K_secant_elastic_Nm_per_rad,reaction_torque_Nm,"
              "max_pin_force_N,linear_iterations,peak_memory_MB,"
-             "transmission_error_arcsec,preconditioner_setups";
+             "transmission_error_arcsec,preconditioner_setups,"
+             "K_secant_error,K_tangent_error,max_pin_force_error,"
+             "mesh_warning";
     }
 
 
@@ -38,7 +42,8 @@ namespace cycloid
              "phase_deg,approach_um,pair_stiffness_N_per_mm,contact_x_mm,"
              "contact_y_mm,contact_halfwidth_um,hertz_halfwidth_um,"
              "max_contact_pressure_MPa,hertz_pressure_MPa,"
-             "max_shear_stress_MPa,max_shear_depth_um";
+             "max_shear_stress_MPa,max_shear_depth_um,Fn_error_N,"
+             "active_nodes";
     }
 
 
@@ -190,7 +195,12 @@ namespace cycloid
                 << ',' << s.max_pin_force() << ',' << s.linear_iterations << ','
                 << s.peak_memory_MB << ','
                 << s.rotation * u::arcsec_per_rad + 0. << ','
-                << s.preconditioner_setups << '\n';
+                << s.preconditioner_setups << ',' << s.error.k_secant << ','
+                << s.error.k_tangent << ',' << s.error.max_pin_force << ','
+                << (flag(s) ? 1 : 0) << '\n';
+      ++n_written;
+      if (flag(s))
+        ++n_flagged;
       // (+ 0. turns a negative zero into 0 in the CSV.)
       for (const results::PinState &p : s.pins)
         pin_forces << s.step << ',' << crank_deg << ',' << p.disc << ','
@@ -202,7 +212,8 @@ namespace cycloid
                    << ',' << p.contact_halfwidth * u::um_per_mm << ','
                    << p.hertz_halfwidth * u::um_per_mm << ',' << p.max_pressure
                    << ',' << p.hertz_pressure << ',' << p.max_shear_stress
-                   << ',' << p.max_shear_depth * u::um_per_mm << '\n';
+                   << ',' << p.max_shear_depth * u::um_per_mm << ','
+                   << p.fn_error << ',' << p.active_nodes << '\n';
       stiffness.flush();
       pin_forces.flush();
 
@@ -272,6 +283,51 @@ namespace cycloid
       if (s.dofs > 0)
         std::cout << ", dofs " << s.dofs;
       std::cout << ", " << s.wall_s << " s" << std::endl;
+      print_estimate(s);
+    }
+
+
+
+    bool
+    Report::flag(const results::StageState &s) const
+    {
+      return options.warning_threshold > 0 &&
+             (!s.error.failure.empty() ||
+              (s.error.available() &&
+               s.error.largest() > options.warning_threshold));
+    }
+
+
+
+    void
+    Report::print_estimate(const results::StageState &s) const
+    {
+      if (!s.error.failure.empty())
+        std::cout << "    WARNING: no error estimate: the next coarser contact "
+                  << "level failed (" << s.error.failure
+                  << "); the mesh is near the coarsest the contact solver "
+                  << "resolves. " << options.refine_advice << std::endl;
+      if (!s.error.available())
+        return;
+      const auto pct = [](const double x) {
+        std::ostringstream out;
+        out << std::setprecision(2) << 100. * x << " %";
+        return out.str();
+      };
+      std::cout << "    estimated error (contact levels "
+                << s.error.contact_level - 2 << " to " << s.error.contact_level
+                << "): K_secant " << pct(s.error.k_secant) << ", K_tangent "
+                << pct(s.error.k_tangent) << ", pin forces "
+                << pct(s.error.max_pin_force) << " of the largest" << std::endl;
+      if (!flag(s))
+        return;
+      std::cout << "    WARNING: the estimate exceeds Mesh/Warning threshold ("
+                << pct(options.warning_threshold) << "): this state's mesh "
+                << "does not resolve the contacts";
+      const auto pins = results::unresolved_pins(s, options.warning_threshold);
+      for (unsigned int i = 0; i < pins.size(); ++i)
+        std::cout << (i == 0 ? "; pin forces off by up to: " : ", ") << pins[i];
+      std::cout << ". " << options.refine_advice << std::endl;
     }
 
 
@@ -427,6 +483,12 @@ namespace cycloid
                   << " MPa (state " << peak.step + 1 << ", crank "
                   << peak.crank * u::deg_per_rad << " deg, torque "
                   << peak.torque << " N m)" << std::endl;
+      if (n_flagged > 0)
+        std::cout << "  WARNING: " << n_flagged << " of " << n_written
+                  << " state(s) exceed Mesh/Warning threshold ("
+                  << options.warning_threshold
+                  << ") in their error estimate (stiffness.csv mesh_warning "
+                  << "= 1). " << options.refine_advice << std::endl;
       std::cout << "  results in " << options.directory << "/: " << written
                 << std::endl;
     }

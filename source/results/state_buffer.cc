@@ -31,6 +31,10 @@ namespace cycloid
         f(s.dofs);
         f(s.wall_s);
         f(s.peak_memory_MB);
+        f(s.error.k_secant);
+        f(s.error.k_tangent);
+        f(s.error.max_pin_force);
+        f(s.error.contact_level);
       }
 
       template <typename Pin, typename Field>
@@ -55,6 +59,8 @@ namespace cycloid
         f(p.hertz_pressure);
         f(p.max_shear_stress);
         f(p.max_shear_depth);
+        f(p.active_nodes);
+        f(p.fn_error);
       }
 
       /** Number of doubles of the fields of a state and of a pin. */
@@ -89,11 +95,13 @@ namespace cycloid
     StateBuffer::pack(const StageState &state)
     {
       std::vector<double> buffer;
-      buffer.reserve(n_state_fields() + 1 + state.pins.size() * n_pin_fields());
+      buffer.reserve(n_state_fields() + 2 + state.pins.size() * n_pin_fields());
       const auto put = [&buffer](const auto &x) {
         buffer.push_back(static_cast<double>(x));
       };
       for_each_field(state, put);
+      // The reason of a failed estimate travels as a flag only.
+      buffer.push_back(state.error.failure.empty() ? 0. : 1.);
       buffer.push_back(state.pins.size());
       for (const PinState &p : state.pins)
         for_each_pin_field(p, put);
@@ -105,7 +113,7 @@ namespace cycloid
     StageState
     StateBuffer::unpack(const double *data, const unsigned int size)
     {
-      const unsigned int header = n_state_fields() + 1;
+      const unsigned int header = n_state_fields() + 2;
       AssertThrow(size >= header,
                   dealii::ExcMessage("StateBuffer: " + std::to_string(size) +
                                      " doubles are too few for a state."));
@@ -120,6 +128,9 @@ namespace cycloid
       };
       StageState state;
       for_each_field(state, get);
+      if (data[i++] != 0.)
+        state.error.failure = "the coarser contact level failed; the phase "
+                              "group's own console says why";
       ++i; // the number of pins
       state.pins.resize(n_pins);
       for (PinState &p : state.pins)

@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 
 #include <cycloid/postprocess/report.h>
 #include <cycloid/postprocess/solution_record.h>
@@ -43,6 +44,14 @@ namespace cycloid
       options.rated_torque     = settings.loading.rated_torque;
       options.lost_motion_fraction =
         parameters::LoadingParameters::lost_motion_torque;
+      const auto &m             = settings.stage.mesh;
+      options.warning_threshold = m.error.warning_threshold;
+      options.refine_advice =
+        "Cure: raise Mesh/Contact refinements (now " +
+        std::to_string(m.contact_refinements) +
+        ") by one, or set Mesh/Target accuracy (now " +
+        dealii::Utilities::to_string(m.error.target_accuracy) +
+        ") to the accuracy wanted (doc/error-estimate.md).";
       return options;
     }
 

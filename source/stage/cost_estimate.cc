@@ -101,6 +101,7 @@ namespace cycloid
       e.memory_bytes = 1e6 * mb_per_rank * ranks +
                        1e3 * f.kb_per_dof * q2 * rank_memory * finest;
       e.seconds_per_state = seconds * (in.degree > 1 ? 1.5 : 1.) *
+                            (in.error_estimate ? 1.5 : 1.) *
                             std::pow(2. / ranks, rank_exponent);
       return e;
     }
@@ -176,6 +177,10 @@ namespace cycloid
                << mesh.adaptive_cycles << ")";
       if (mesh.degree > 1)
         advice << ", Mesh/Polynomial degree = 1";
+      if (mesh.error.mode == mesh::ErrorControl::Mode::on)
+        advice << ", Mesh/Error estimate = false (its coarser levels need "
+                  "Contact refinements >= "
+               << mesh::ErrorControl::coarser_levels << ")";
       if (estimate.family != "2D")
         advice << ", Mesh/Axial layers per disc (now " << mesh.axial_layers
                << ")";

@@ -4,25 +4,49 @@
 #include <deal.II/base/quadrature.h>
 
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/cell_id.h>
 #include <deal.II/grid/tria_accessor.h>
 #include <deal.II/grid/tria_iterator.h>
 
 #include <cycloid/analytic/pair_stiffness.h>
 #include <cycloid/elasticity/support_points.h>
 #include <cycloid/postprocess/report.h>
+#include <cycloid/results/error_estimate.h>
 #include <cycloid/stage/cost_estimate.h>
 #include <cycloid/stage/stage_scene.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace cycloid
 {
   namespace stage
   {
+    namespace
+    {
+      /** @p text on one line, whitespace runs as one blank. */
+      std::string
+      trimmed(const std::string &text)
+      {
+        std::string out;
+        for (const char c : text)
+          if (!std::isspace(static_cast<unsigned char>(c)))
+            out += c;
+          else if (!out.empty() && out.back() != ' ')
+            out += ' ';
+        while (!out.empty() && out.back() == ' ')
+          out.pop_back();
+        return out;
+      }
+    } // namespace
+
+
+
     namespace ids = mesh::ids;
     namespace u   = results::units;
     using Scene   = parameters::SceneParameters;
@@ -273,8 +297,10 @@ namespace cycloid
                        settings.scene.n_discs,
                        contact->elasticity().n_dofs(),
                        settings.mesh.degree,
-                       settings.mesh.adaptive_cycles,
-                       dealii::Utilities::MPI::n_mpi_processes(comm)});
+                       settings.mesh.adaptive_cycles +
+
+                         dealii::Utilities::MPI::n_mpi_processes(comm),
+                       settings.mesh.error.estimates(dim)});
       pcout << "  " << estimate.line() << std::endl;
       check_memory(estimate, available_memory_bytes(comm), settings.mesh);
     }
@@ -360,15 +386,48 @@ namespace cycloid
 
 
     template <int dim>
+    unsigned int
+    StageScene<dim>::level_cap() const
+    {
+      // The a-priori refinements, the adaptive cycles, and what the target
+      // accuracy may add.
+      const auto  &m     = settings.mesh;
+      unsigned int extra = 0;
+      if (m.error.target_accuracy > 0)
+        extra += m.error.max_cycles;
+      return m.global_refinements + m.contact_refinements + m.adaptive_cycles +
+             extra;
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    StageScene<dim>::contact_level() const
+    {
+      return tria.n_global_levels() - 1 - settings.mesh.global_refinements;
+    }
+
+
+
+    template <int dim>
     void
+    StageScene<dim>::rebuild(const ActiveSetSnapshot<dim> &snapshot)
+    {
+      setup_system();
+      compute_rotation_field();
+      contact->transfer_active_set(snapshot);
+    }
+
+
+
+    template <int dim>
+    bool
     StageScene<dim>::refine_at_contacts()
     {
       dealii::TimerOutput::Scope t(timing, "refine at contacts");
-      // Cells of any body next to an active node, up to the level that the
-      // a-priori refinements plus the adaptive cycles allow.
-      const auto        &m = settings.mesh;
-      const unsigned int cap =
-        m.global_refinements + m.contact_refinements + m.adaptive_cycles;
+      // Cells of any body next to an active node, up to the level cap.
+      const unsigned int              cap = level_cap();
       std::vector<dealii::Point<dim>> points;
       for (const unsigned int i : contact->active_set())
         points.push_back(contact->slave_nodes()[i].position);
@@ -388,12 +447,147 @@ namespace cycloid
               }
         }
       if (flagged == 0)
-        return;
+        return false;
       const auto snapshot = contact->active_set_snapshot();
       tria.execute_coarsening_and_refinement();
-      setup_system();
-      compute_rotation_field();
-      contact->transfer_active_set(snapshot);
+      rebuild(snapshot);
+      return true;
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::SolveCost::add(const contact::ContactState &result)
+    {
+      iterations += result.iterations;
+      linear += result.linear_iterations;
+      setups += result.preconditioner_setups;
+    }
+
+
+
+    template <int dim>
+    results::StageState
+    StageScene<dim>::solve_level(const double load, SolveCost &cost)
+    {
+      const contact::ContactState result = solve_state(load);
+      cost.add(result);
+      return state(result, load);
+    }
+
+
+
+    template <int dim>
+    std::set<dealii::CellId>
+    StageScene<dim>::coarsen_finest_level()
+    {
+      // The finest cells all lie at the contacts (only the contact
+      // refinements reach that level); their parents are remembered, so
+      // that refining those again restores the mesh exactly.
+      const unsigned int top = tria.n_global_levels() - 1;
+      for (const auto &cell : tria.active_cell_iterators())
+        if (static_cast<unsigned int>(cell->level()) == top)
+          cell->set_coarsen_flag();
+      tria.prepare_coarsening_and_refinement();
+      std::set<dealii::CellId> parents;
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->coarsen_flag_set())
+          parents.insert(cell->parent()->id());
+      tria.execute_coarsening_and_refinement();
+      return parents;
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::refine_cells(const std::set<dealii::CellId> &cells)
+    {
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cells.count(cell->id()) > 0)
+          cell->set_refine_flag();
+      tria.execute_coarsening_and_refinement();
+    }
+
+
+
+    template <int dim>
+    bool
+    StageScene<dim>::solve_coarser_levels(
+      const double                      load,
+      std::vector<results::StageState> &coarser,
+      SolveCost                        &cost)
+    {
+      const unsigned int n = mesh::ErrorControl::coarser_levels;
+      if (tria.n_global_levels() - 1 < settings.mesh.global_refinements + n)
+        return false;
+      const auto n_cells  = tria.n_global_active_cells();
+      const auto original = contact->active_set_snapshot();
+      std::vector<std::set<dealii::CellId>> parents;
+      {
+        dealii::TimerOutput::Scope t(timing, "error estimate: coarsen");
+        for (unsigned int k = 0; k < n; ++k)
+          parents.push_back(coarsen_finest_level());
+        rebuild(original);
+      }
+      // Coarsest first, each level warm-started from the one below. A
+      // level that fails (an active set that cycles on a coarse flank, a
+      // solver that does not converge) leaves the state without an
+      // estimate, not without a result: the mesh asked for is restored and
+      // solved from the warm start it had.
+      auto snapshot = original;
+      bool solved   = true;
+      for (unsigned int k = n; k-- > 0;)
+        {
+          try
+            {
+              coarser.push_back(solve_level(load, cost));
+              snapshot = contact->active_set_snapshot();
+            }
+          catch (const dealii::ExceptionBase &e)
+            {
+              std::ostringstream message;
+              e.print_info(message);
+              coarse_failure = trimmed(message.str());
+              solved         = false;
+            }
+          catch (const std::exception &e)
+            {
+              coarse_failure = trimmed(e.what());
+              solved         = false;
+            }
+          dealii::TimerOutput::Scope t(timing, "error estimate: coarsen");
+          if (!solved)
+            {
+              for (unsigned int j = k + 1; j-- > 0;)
+                refine_cells(parents[j]);
+              rebuild(original);
+              break;
+            }
+          refine_cells(parents[k]);
+          rebuild(snapshot);
+        }
+      AssertThrow(tria.n_global_active_cells() == n_cells,
+                  dealii::ExcMessage("the error estimate's coarser levels did "
+                                     "not refine back to the mesh asked for."));
+      return solved;
+    }
+
+
+
+    template <int dim>
+    bool
+    StageScene<dim>::refine_again(const unsigned int         cycle,
+                                  const bool                 have_coarse,
+                                  const results::StageState &fine) const
+    {
+      const auto &m = settings.mesh;
+      if (cycle < m.adaptive_cycles)
+        return true;
+      return m.error.target_accuracy > 0 && have_coarse &&
+             fine.error.largest() > m.error.target_accuracy &&
+             cycle < m.adaptive_cycles + m.error.max_cycles;
     }
 
 
@@ -431,31 +625,63 @@ namespace cycloid
         }
       if (load != 0) // a zero load has no side
         warm_load = load;
-      contact::ContactState result     = solve_state(load);
-      unsigned int          iterations = result.iterations;
-      unsigned long         linear     = result.linear_iterations;
-      unsigned int          setups     = result.preconditioner_setups;
-      for (unsigned int cycle = 0; cycle < settings.mesh.adaptive_cycles;
+      const bool estimate = settings.mesh.error.estimates(dim);
+      coarse_failure.clear();
+      SolveCost                        cost;
+      std::vector<results::StageState> levels; // coarsest first
+      bool have_coarse = estimate && solve_coarser_levels(load, levels, cost);
+      results::StageState fine = solve_level(load, cost);
+      if (have_coarse)
+        results::set_error_estimate(levels[0],
+                                    levels[1],
+                                    fine,
+                                    contact_level());
+      for (unsigned int cycle = 0; refine_again(cycle, have_coarse, fine);
            ++cycle)
         {
-          const auto n = contact->elasticity().n_dofs();
-          refine_at_contacts();
-          if (contact->elasticity().n_dofs() == n)
+          if (!refine_at_contacts())
             break;
-          result = solve_state(load);
-          iterations += result.iterations;
-          linear += result.linear_iterations;
-          setups += result.preconditioner_setups;
+          if (have_coarse)
+            levels = {std::move(levels[1]), std::move(fine)};
+          fine = solve_level(load, cost);
+          if (have_coarse)
+            results::set_error_estimate(levels[0],
+                                        levels[1],
+                                        fine,
+                                        contact_level());
         }
-      results::StageState s   = state(result, load);
-      s.iterations            = iterations;
-      s.linear_iterations     = linear;
-      s.preconditioner_setups = setups;
-      s.peak_memory_MB        = postprocess::peak_memory_MB(comm);
-      s.wall_s =
+      if (!coarse_failure.empty() && !fine.error.available())
+        fine.error.failure = coarse_failure;
+      report_accuracy(fine);
+      fine.iterations            = cost.iterations;
+      fine.linear_iterations     = cost.linear;
+      fine.preconditioner_setups = cost.setups;
+      fine.peak_memory_MB        = postprocess::peak_memory_MB(comm);
+      fine.wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
-      return s;
+      return fine;
+    }
+
+
+
+    template <int dim>
+    void
+    StageScene<dim>::report_accuracy(const results::StageState &s) const
+    {
+      const double target = settings.mesh.error.target_accuracy;
+      if (target == 0 || !s.error.available())
+        return;
+      pcout << "  target accuracy " << target << ": "
+            << (s.error.largest() <= target ? "reached" : "NOT reached")
+            << " at contact level " << s.error.contact_level << " (" << s.dofs
+            << " DoFs), largest estimate " << s.error.largest()
+            << (s.error.largest() <= target ?
+                  std::string() :
+                  "; Mesh/Maximum accuracy cycles (now " +
+                    std::to_string(settings.mesh.error.max_cycles) +
+                    ") or Mesh/Contact refinements would go further")
+            << std::endl;
     }
 
 
@@ -484,6 +710,7 @@ namespace cycloid
                        gy = std::sin(delta) * rx + std::cos(delta) * ry;
           pins[k].fx += gx;
           pins[k].fy += gy;
+          ++pins[k].active_nodes;
           moment[k] +=
             (s.position[0] - c[0]) * gy - (s.position[1] - c[1]) * gx;
         }

@@ -88,6 +88,13 @@ namespace cycloid
       void
       parse_parameters(dealii::ParameterHandler &prm);
 
+      /** Resolve `Mesh/Error estimate` for the run mode and dimension: on
+       * (raising Contact refinements to the levels the estimate coarsens)
+       * or off. Returns the note for the user, empty if nothing changed
+       * that the file asked for. */
+      std::string
+      resolve_error_estimate();
+
       /**
        * Declare, read @p filename (with a clear error if it does not exist
        * or does not parse: a misspelled name gets the closest declared

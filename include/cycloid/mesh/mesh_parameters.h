@@ -8,6 +8,53 @@ namespace cycloid
   namespace mesh
   {
     /**
+     * @brief How an FE state estimates its own error and what it does
+     * with it (entries of subsection `Mesh`; results/error_estimate.h
+     * computes it, doc/error-estimate.md validates it).
+     *
+     * The state is solved on three nested contact levels: the mesh asked
+     * for (level L) and the same mesh with its finest cells, which all lie
+     * at the contacts, coarsened once (L-1) and twice (L-2). A quantity's
+     * estimate is the larger of its change from L-1 to L and half its
+     * change from L-2 to L-1: the error is taken to fall at least by half
+     * per level, so a change that fell by more than that is not trusted
+     * until a further level confirms it (two levels alone can agree by
+     * chance, measured on the seed case).
+     */
+    struct ErrorControl
+    {
+      /** `Mesh/Error estimate`: auto (2D on, 3D off unless a target
+       * accuracy is set), true or false. */
+      enum class Mode
+      {
+        automatic,
+        on,
+        off
+      };
+      /** Whether to estimate. */
+      Mode mode = Mode::automatic;
+      /** States whose largest estimate exceeds this are flagged [-]. */
+      double warning_threshold = 0.02;
+      /** Refine at the active contacts until the largest estimate is
+       * below this (0: off) [-]. */
+      double target_accuracy = 0;
+      /** Refinement cycles the target may add per state [-]. */
+      unsigned int max_cycles = 4;
+      /** Contact levels below the mesh asked for that the estimate
+       * solves. */
+      static constexpr unsigned int coarser_levels = 2;
+
+      /** Whether FE states of a @p dim-dimensional scene estimate their
+       * error. */
+      bool
+      estimates(const unsigned int dim) const
+      {
+        return mode == Mode::on ||
+               (mode == Mode::automatic && (dim == 2 || target_accuracy > 0));
+      }
+    };
+
+    /**
      * @brief Subsection `Mesh`: element sizes of the gmsh mesh, the axial
      * layering of 3D scenes and a-priori refinement in deal.II.
      *
@@ -51,6 +98,8 @@ namespace cycloid
       unsigned int degree = 1;
       /** Adaptive refinement cycles at the active contact nodes. */
       unsigned int adaptive_cycles = 0;
+      /** The error estimate of FE states and what follows from it. */
+      ErrorControl error;
       /** Mesh psi mod the mesh period and turn by whole pin pitches. */
       bool periodic = true;
       /** Write the gmsh mesh (with physical groups) as stage.msh. */

@@ -100,6 +100,12 @@ namespace cycloid
         /** Fraction of the rated torque at which the lost motion is read
          * (catalogues: 3 %). */
         double lost_motion_fraction = 0.03;
+        /** Flag FE states whose largest error estimate exceeds this
+         * (Mesh/Warning threshold; 0: never) [-]. */
+        double warning_threshold = 0;
+        /** What cures a flagged state, named in its warning (e.g. the
+         * entries to raise, with their present values). */
+        std::string refine_advice;
         /** Continue the files of a run being resumed instead of starting
          * them: truncate each to the size in @p resume_sizes (the sizes at
          * the checkpoint, in the order of files()), then append. */
@@ -178,6 +184,13 @@ namespace cycloid
         double            torque = 0;
         results::PinState pin;
       };
+      /** Whether @p state's error estimate exceeds the warning
+       * threshold. */
+      bool
+      flag(const results::StageState &state) const;
+      /** Print @p state's error estimate, and its warning if flagged. */
+      void
+      print_estimate(const results::StageState &state) const;
       /** Write fluctuation.csv and print its figures (sweeps). */
       void
       write_fluctuation() const;
@@ -198,6 +211,8 @@ namespace cycloid
       std::vector<Series>       series;
       std::vector<TorsionPoint> cycle;
       PeakPin                   peak;
+      /** States flagged by the warning threshold, and states written. */
+      unsigned int n_flagged = 0, n_written = 0;
     };
   } // namespace postprocess
 } // namespace cycloid

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace cycloid
@@ -90,6 +91,50 @@ namespace cycloid
       double max_shear_stress = 0;
       /** Its depth below the surface [mm]. */
       double max_shear_depth = 0;
+      /** Active contact nodes of the pair (FE; 0 otherwise): the contact
+       * zone's resolution. */
+      unsigned int active_nodes = 0;
+      /** Estimated error of fn, from the change against the next coarser
+       * contact level (FE with an error estimate; NaN otherwise) [N]. */
+      double fn_error = std::numeric_limits<double>::quiet_NaN();
+    };
+
+    /**
+     * @brief Relative error estimates of a state (FE with `Mesh/Error
+     * estimate`; NaN where not estimated), e.g. 0.004 = 0.4 %.
+     */
+    struct ErrorEstimate
+    {
+      /** Of K_secant [-]. */
+      double k_secant = std::numeric_limits<double>::quiet_NaN();
+      /** Of K_tangent [-]. */
+      double k_tangent = std::numeric_limits<double>::quiet_NaN();
+      /** Of every pin force, relative to the largest pin force [-]. */
+      double max_pin_force = std::numeric_limits<double>::quiet_NaN();
+      /** Contact refinement level of the state above the mesh's global
+       * refinements (the finer of the two levels compared). */
+      unsigned int contact_level = 0;
+      /** Why an FE state that should have an estimate has none (the
+       * coarser level failed); empty otherwise. */
+      std::string failure;
+
+      /** Whether the state has an estimate. */
+      bool
+      available() const
+      {
+        return !std::isnan(max_pin_force);
+      }
+
+      /** The largest of the three estimates (NaN estimates ignored). */
+      double
+      largest() const
+      {
+        double e = 0;
+        for (const double x : {k_secant, k_tangent, max_pin_force})
+          if (!std::isnan(x))
+            e = std::max(e, x);
+        return e;
+      }
     };
 
     /**
@@ -116,6 +161,8 @@ namespace cycloid
       double reaction_torque = 0;
       /** Every pin of every disc, disc-major. */
       std::vector<PinState> pins;
+      /** Its error estimate (FE states). */
+      ErrorEstimate error;
 
       /** Active-set (FE) or torque-balance (analytic) iterations. */
       unsigned int iterations = 0;

@@ -14,7 +14,8 @@ namespace cycloid
      * solved on one rank to another (the phase groups of a sweep send their
      * states to world rank 0, which writes every file).
      *
-     * Layout: the scalar fields of the state, the number of pins, then the
+     * Layout: the scalar fields of the state, a flag for a failed error
+     * estimate (its message stays behind), the number of pins, then the
      * scalar fields of each pin in order. Integers travel as doubles (exact
      * below 2^53, far above any step, iteration or DoF count). pack() and
      * unpack() read one list of fields (source/results/state_buffer.cc), so

@@ -5,6 +5,7 @@
 #include <deal.II/base/timer.h>
 
 #include <deal.II/distributed/shared_tria.h>
+#include <deal.II/grid/cell_id.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <cycloid/analytic/stage_model.h>
@@ -20,6 +21,7 @@
 #include <cycloid/results/stage_state.h>
 
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -128,6 +130,10 @@ namespace cycloid
        * for the rotation @p load [rad]), warm-started from the previous
        * state (or for the first from the analytical model's rotation), with
        * `Mesh/Adaptive refinement cycles` refinements at the active contact.
+       * With `Mesh/Error estimate` the state carries its error estimate
+       * (the same state on the next coarser contact level, see
+       * stage/error_estimate.h), and `Mesh/Target accuracy` refines at the
+       * contacts until the estimate is below it.
        */
       results::StageState
       solve(const double load);
@@ -241,8 +247,65 @@ namespace cycloid
       announce_cost() const;
       contact::ContactState
       solve_state(const double load);
+      /** What the solves of one state cost, over its levels. */
+      struct SolveCost
+      {
+        unsigned int  iterations = 0; ///< Active-set iterations.
+        unsigned long linear     = 0; ///< Linear-solver iterations.
+        unsigned int  setups     = 0; ///< Preconditioner set-ups.
+        /** Add the cost of @p result. */
+        void
+        add(const contact::ContactState &result);
+      };
+      /** Solve for @p load on the current mesh, add the cost to @p cost,
+       * and return the stage's state. */
+      results::StageState
+      solve_level(const double load, SolveCost &cost);
+      /** The error estimate's coarser levels: coarsen the mesh's finest
+       * contact level mesh::ErrorControl::coarser_levels times, solve
+       * @p load on each level from the coarsest up (into @p coarser,
+       * coarsest first), each warm-started from the one below, and refine
+       * back to the mesh asked for (the active set the finest coarser
+       * solution's). False if the mesh has too few contact levels above
+       * its global refinements (nothing done) or if a coarser solve failed
+       * (coarse_failure says why; the mesh and warm start are restored). */
+      bool
+      solve_coarser_levels(const double                      load,
+                           std::vector<results::StageState> &coarser,
+                           SolveCost                        &cost);
+      /** Coarsen every cell of the finest level; returns the parents
+       * (now active) of the cells coarsened. */
+      std::set<dealii::CellId>
+      coarsen_finest_level();
+      /** Refine the active cells @p cells once. */
       void
+      refine_cells(const std::set<dealii::CellId> &cells);
+      /** Whether solve() refines and solves again after cycle @p cycle:
+       * the adaptive cycles, or the target accuracy not met by @p fine
+       * (which has an estimate if @p have_coarse). */
+      bool
+      refine_again(const unsigned int         cycle,
+                   const bool                 have_coarse,
+                   const results::StageState &fine) const;
+      /** Refine next to the active nodes (up to level_cap()); false if no
+       * cell was refined. */
+      bool
       refine_at_contacts();
+      /** Print whether @p s met `Mesh/Target accuracy` (if set). */
+      void
+      report_accuracy(const results::StageState &s) const;
+      /** The finest level refine_at_contacts() may reach. */
+      unsigned int
+      level_cap() const;
+      /** The mesh's contact level: its finest cells' level above the
+       * global refinements. */
+      unsigned int
+      contact_level() const;
+      /** After the triangulation changed: DoFs, contact nodes, load,
+       * rotation field, and the active set carried over from
+       * @p snapshot. */
+      void
+      rebuild(const ActiveSetSnapshot<dim> &snapshot);
       void
       compute_rotation_field();
       /** First state: the active set that the analytical model's rotation
@@ -287,6 +350,9 @@ namespace cycloid
       bool                                          warm = false;
       /** The load of the state the active set comes from. */
       double warm_load = 0;
+      /** Why the current state's coarser level failed (empty: it did
+       * not). */
+      std::string coarse_failure;
     };
   } // namespace stage
 } // namespace cycloid

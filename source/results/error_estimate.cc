@@ -1,0 +1,80 @@
+#include <deal.II/base/exceptions.h>
+
+#include <cycloid/results/error_estimate.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace cycloid
+{
+  namespace results
+  {
+    void
+    set_error_estimate(const StageState  &coarser,
+                       const StageState  &coarse,
+                       StageState        &fine,
+                       const unsigned int level)
+    {
+      AssertThrow(coarser.pins.size() == fine.pins.size() &&
+                    coarse.pins.size() == fine.pins.size(),
+                  dealii::ExcDimensionMismatch(coarse.pins.size(),
+                                               fine.pins.size()));
+      const double w = previous_change_weight;
+      // max(|last change|, w |change before|) relative to |reference|.
+      const auto estimate = [w](const double q2,
+                                const double q1,
+                                const double q0,
+                                const double reference) {
+        if (!std::isfinite(q0) || !std::isfinite(q1) || !std::isfinite(q2) ||
+            reference == 0)
+          return std::numeric_limits<double>::quiet_NaN();
+        return std::max(std::abs(q0 - q1), w * std::abs(q1 - q2)) /
+               std::abs(reference);
+      };
+      auto &e         = fine.error;
+      e.k_secant      = estimate(coarser.k_secant(),
+                            coarse.k_secant(),
+                            fine.k_secant(),
+                            fine.k_secant());
+      e.k_tangent     = estimate(coarser.k_tangent,
+                             coarse.k_tangent,
+                             fine.k_tangent,
+                             fine.k_tangent);
+      e.contact_level = level;
+      double largest  = 0;
+      for (unsigned int k = 0; k < fine.pins.size(); ++k)
+        {
+          auto &p = fine.pins[k];
+          p.fn_error =
+            estimate(coarser.pins[k].fn, coarse.pins[k].fn, p.fn, 1.);
+          largest = std::max(largest, p.fn_error);
+        }
+      const double f_max = fine.max_pin_force();
+      e.max_pin_force =
+        f_max > 0 ? largest / f_max : std::numeric_limits<double>::quiet_NaN();
+    }
+
+
+
+    std::vector<std::string>
+    unresolved_pins(const StageState &state, const double threshold)
+    {
+      std::vector<std::string> pins;
+      const double             f_max = state.max_pin_force();
+      if (!(f_max > 0))
+        return pins;
+      for (const auto &p : state.pins)
+        if (p.fn_error > threshold * f_max)
+          {
+            std::ostringstream item;
+            item.precision(2);
+            item << "disc " << p.disc << " pin " << p.pin << " ("
+                 << 100. * p.fn_error / f_max << " %)";
+            pins.push_back(item.str());
+          }
+      return pins;
+    }
+  } // namespace results
+} // namespace cycloid
