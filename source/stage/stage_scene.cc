@@ -297,9 +297,8 @@ namespace cycloid
                        settings.scene.n_discs,
                        contact->elasticity().n_dofs(),
                        settings.mesh.degree,
-                       settings.mesh.adaptive_cycles +
-
-                         dealii::Utilities::MPI::n_mpi_processes(comm),
+                       settings.mesh.adaptive_cycles,
+                       dealii::Utilities::MPI::n_mpi_processes(comm),
                        settings.mesh.error.estimates(dim)});
       pcout << "  " << estimate.line() << std::endl;
       check_memory(estimate, available_memory_bytes(comm), settings.mesh);
