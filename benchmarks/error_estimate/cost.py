@@ -16,27 +16,19 @@ import csv
 import os
 import statistics
 import subprocess
+import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EXE = os.path.join(ROOT, "build", "cycloid-contact")
 WORK = "/tmp/cycloid-error-estimate-cost"
-BODY = """set Run = quasi-static
-set Output directory = {out}
-set Write solution = false
-subsection Geometry
-  set Pin circle radius modification = -0.01
-  set Pin radius modification = 0.005
-end
-subsection Scene
-  set Number of discs = 1
-end
-subsection Loading
-  set Torque = 1000
-end
-subsection Mesh
-{mesh}end
-"""
+# The slab case of the validation, so that both measure the same scene.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from validate import CASES_2D  # noqa: E402
+
+SLAB = CASES_2D["2D slab, modified, 1000 N m"][0]
+BODY = ("set Run = quasi-static\nset Output directory = {out}\nset Write solution = false\n"
+        + SLAB.replace("{", "{{").replace("}", "}}") + "subsection Mesh\n{mesh}end\n")
 VARIANTS = [(f"cr{c} estimate {e}", f"  set Contact refinements = {c}\n  set Error estimate = {e}\n")
             for c in (2, 3, 4) for e in ("false", "true")]
 VARIANTS.append(("default mesh, Target accuracy 0.01", "  set Target accuracy = 0.01\n"))
