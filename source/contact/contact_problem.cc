@@ -1,3 +1,5 @@
+#include <deal.II/base/mpi.h>
+
 #include <cycloid/contact/active_set_solver.h>
 #include <cycloid/contact/contact_problem.h>
 #include <cycloid/contact/vtu_output.h>
@@ -81,6 +83,7 @@ namespace cycloid
       find_slave_nodes();
       ties = search.find_tied_nodes();
       ghost_master_dofs();
+      fix_pattern();
       solution.active.clear();
       fixed.clear();
       load.clear();
@@ -128,6 +131,48 @@ namespace cycloid
 
 
     template <int dim>
+    std::vector<dealii::types::global_dof_index>
+    ContactProblem<dim>::pattern_signature() const
+    {
+      std::vector<dealii::types::global_dof_index> sig;
+      for (const auto &s : slaves)
+        if (!s.hanging)
+          {
+            sig.push_back(s.dofs[0]);
+            sig.insert(sig.end(), s.master_dofs.begin(), s.master_dofs.end());
+          }
+      return sig;
+    }
+
+
+
+    template <int dim>
+    void
+    ContactProblem<dim>::fix_pattern()
+    {
+      if (!settings.reuse_preconditioner)
+        return;
+      // Every active set is a subset of all candidates active, so one
+      // pattern serves all states of these slaves and masters (and the AMG
+      // hierarchy on it can be reused). Fixed and load DoFs are left out:
+      // their lines have no masters, and a slave DoF among them only loses
+      // entries in the real sets. (They may also still be the last mesh's.)
+      problem->set_pattern_superset(
+        [this](dealii::AffineConstraints<double> &c) {
+          const std::vector<dealii::types::global_dof_index>      none;
+          const std::map<dealii::types::global_dof_index, double> no_load;
+          const ContactSystem<dim> system{slaves, ties, none, no_load};
+          system.add_supports(c, 0.);
+          for (const auto &s : slaves)
+            if (!s.hanging)
+              formulation->constrain(c, s, false);
+        });
+      signature = pattern_signature();
+    }
+
+
+
+    template <int dim>
     void
     ContactProblem<dim>::set_fixed_dofs(
       const std::vector<dealii::types::global_dof_index> &dofs)
@@ -155,7 +200,16 @@ namespace cycloid
       for (const unsigned int i : solution.active)
         was_active.insert(slaves[i].dofs[0]);
       find_slave_nodes();
-      ghost_master_dofs();
+      // Collective: the slaves' masters may be known on some ranks only.
+      const MPI_Comm comm =
+        problem->dof_handler().get_triangulation().get_communicator();
+      if (dealii::Utilities::MPI::max(static_cast<unsigned int>(
+                                        pattern_signature() != signature),
+                                      comm) > 0)
+        {
+          ghost_master_dofs();
+          fix_pattern();
+        }
       solution.active.clear();
       for (unsigned int i = 0; i < slaves.size(); ++i)
         if (!slaves[i].hanging && was_active.count(slaves[i].dofs[0]))

@@ -56,18 +56,12 @@ namespace cycloid
     {
       dofs.distribute_dofs(fe);
       locally_owned = dofs.locally_owned_dofs();
-      dealii::DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant);
-      if (!extra_relevant.empty())
-        {
-          std::vector<dealii::types::global_dof_index> extra = extra_relevant;
-          std::sort(extra.begin(), extra.end());
-          extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
-          locally_relevant.add_indices(extra.begin(), extra.end());
-        }
+      update_relevant_dofs();
       hanging_all.clear();
       dealii::DoFTools::make_hanging_node_constraints(dofs, hanging_all);
       hanging_all.close();
-      ready = Ready::none;
+      ready         = Ready::none;
+      pattern_fixed = false;
       many_solver.reset();
       many_problem.reset();
     }
@@ -81,15 +75,8 @@ namespace cycloid
         std::function<void(dealii::AffineConstraints<double> &)>> &sets)
     {
       AssertThrow(!sets.empty(), dealii::ExcInternalError());
-      // The extra relevant DoFs may have changed since distribute_dofs().
-      dealii::DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant);
-      if (!extra_relevant.empty())
-        {
-          std::vector<dealii::types::global_dof_index> extra = extra_relevant;
-          std::sort(extra.begin(), extra.end());
-          extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
-          locally_relevant.add_indices(extra.begin(), extra.end());
-        }
+      if (!pattern_fixed)
+        update_relevant_dofs();
       constraint_sets.clear();
       constraint_sets.resize(sets.size());
       for (unsigned int k = 0; k < sets.size(); ++k)
@@ -101,23 +88,96 @@ namespace cycloid
           c.close();
         }
 
+      if (!pattern_fixed)
+        build_exact_pattern();
+      rhs_sets.resize(sets.size());
+      for (auto &rhs : rhs_sets)
+        rhs.reinit(locally_owned, comm);
+      locally_relevant_solution.reinit(locally_owned, locally_relevant, comm);
+      many_solver.reset();
+      many_problem.reset();
+    }
+
+
+
+    template <int dim>
+    void
+    LinearElasticity<dim>::build_exact_pattern()
+    {
       dealii::DynamicSparsityPattern dsp(locally_relevant);
       dealii::DoFTools::make_sparsity_pattern(dofs,
                                               dsp,
                                               constraint_sets[0],
                                               false);
+      reinit_matrix(dsp);
+    }
+
+
+
+    template <int dim>
+    void
+    LinearElasticity<dim>::reinit_matrix(dealii::DynamicSparsityPattern &dsp)
+    {
       dealii::SparsityTools::distribute_sparsity_pattern(dsp,
                                                          locally_owned,
                                                          comm,
                                                          locally_relevant);
       system_matrix.reinit(locally_owned, locally_owned, dsp, comm);
-      rhs_sets.resize(sets.size());
-      for (auto &rhs : rhs_sets)
-        rhs.reinit(locally_owned, comm);
-      locally_relevant_solution.reinit(locally_owned, locally_relevant, comm);
       ready = Ready::none;
-      many_solver.reset();
-      many_problem.reset();
+    }
+
+
+
+    template <int dim>
+    void
+    LinearElasticity<dim>::update_relevant_dofs()
+    {
+      // The extra relevant DoFs may have changed since distribute_dofs().
+      dealii::DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant);
+      if (!extra_relevant.empty())
+        {
+          std::vector<dealii::types::global_dof_index> extra = extra_relevant;
+          std::sort(extra.begin(), extra.end());
+          extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+          locally_relevant.add_indices(extra.begin(), extra.end());
+        }
+    }
+
+
+
+    template <int dim>
+    void
+    LinearElasticity<dim>::set_pattern_superset(
+      const std::function<void(dealii::AffineConstraints<double> &)> &superset)
+    {
+      update_relevant_dofs();
+      // Unclosed, so that a chain of constraints stays visible: a set that
+      // leaves a link of the chain unconstrained condenses onto that link.
+      dealii::AffineConstraints<double> raw(locally_relevant);
+      dealii::DoFTools::make_hanging_node_constraints(dofs, raw);
+      superset(raw);
+      dealii::DynamicSparsityPattern               dsp(locally_relevant);
+      std::vector<dealii::types::global_dof_index> cell_dofs(
+        fe.n_dofs_per_cell()),
+        reach;
+      for (const auto &cell : dofs.active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          cell->get_dof_indices(cell_dofs);
+          // Every DoF the cell's DoFs can be condensed onto in any subset.
+          reach = cell_dofs;
+          for (std::size_t i = 0; i < reach.size(); ++i)
+            if (raw.is_constrained(reach[i]))
+              for (const auto &[m, w] : *raw.get_constraint_entries(reach[i]))
+                if (std::find(reach.begin(), reach.end(), m) == reach.end())
+                  reach.push_back(m);
+          std::sort(reach.begin(), reach.end());
+          for (const auto row : reach)
+            dsp.add_entries(row, reach.begin(), reach.end(), true);
+        }
+      reinit_matrix(dsp);
+      pattern_fixed = true;
     }
 
 
@@ -408,7 +468,11 @@ namespace cycloid
       system_matrix.compress(dealii::VectorOperation::add);
       for (auto &rhs : rhs_sets)
         rhs.compress(dealii::VectorOperation::add);
-      ready = Ready::none;
+      // A hierarchy on the same matrix object (fixed pattern) stays usable.
+      jacobi_ready = false;
+      ready        = ready == Ready::amg || ready == Ready::stale_amg ?
+                       Ready::stale_amg :
+                       Ready::none;
       many_solver.reset();
       many_problem.reset();
     }
@@ -438,8 +502,8 @@ namespace cycloid
                   dealii::ExcMessage(
                     "elasticity: the effective operator needs non-negative "
                     "factors of K and M, not both zero."));
+      // The matrix changes at the next assembly, which updates `ready`.
       dynamic = terms;
-      ready   = Ready::none;
     }
 
 
@@ -737,9 +801,11 @@ namespace cycloid
               solver == Solver::direct_mumps ? "Amesos_Mumps" : "Amesos_Klu"));
           direct->initialize(system_matrix);
           ready = Ready::direct;
+          ++n_builds;
           return true;
         }
-      if (ready == Ready::amg)
+      if (ready == Ready::amg || (ready == Ready::stale_amg && !rebuild_amg) ||
+          dynamic.stiffness == 0.)
         return false;
       // ML with a user-given near-null space (deal.II 9.4 has no
       // extract_rigid_body_modes): translations and, unless asked
@@ -757,7 +823,10 @@ namespace cycloid
       parameters.set("null space: dimension", null_space->NumVectors());
       parameters.set("null space: vectors", null_space->Values());
       amg.initialize(system_matrix, parameters);
-      ready = Ready::amg;
+      ready                = Ready::amg;
+      rebuild_amg          = false;
+      reference_iterations = 0;
+      ++n_builds;
       return true;
     }
 
@@ -781,35 +850,78 @@ namespace cycloid
             x[i] = u[i];
           x.compress(dealii::VectorOperation::insert);
         }
-      setup_preconditioner(solver);
-      if (is_direct(solver))
-        direct->solve(x, rhs);
-      else
+      const bool mass_only = dynamic.stiffness == 0.;
+      if (!is_direct(solver) && mass_only)
         {
+          // A mass operator (the projections of the time schemes): Jacobi
+          // preconditions it as well as any hierarchy, at no set-up cost,
+          // and leaves the stiffness operator's hierarchy to its own.
+          if (!jacobi_ready)
+            jacobi.initialize(system_matrix);
+          jacobi_ready = true;
           dealii::SolverControl control(std::max<unsigned int>(1000,
                                                                rhs.size() / 10),
                                         tolerance * rhs.l2_norm());
           dealii::SolverCG<dealii::TrilinosWrappers::MPI::Vector> cg(control);
+          cg.solve(system_matrix, x, rhs, jacobi);
+          iterations = control.last_step();
+        }
+      else if (is_direct(solver))
+        {
+          setup_preconditioner(solver);
+          direct->solve(x, rhs);
+        }
+      else
+        {
+          setup_preconditioner(solver);
+          const unsigned int limit =
+            std::max<unsigned int>(1000, rhs.size() / 10);
+          // A kept hierarchy may take at most the iterations that would
+          // trigger a rebuild; then CG goes on from there with a new one.
+          const unsigned int rise  = (3 * reference_iterations + 10) / 2;
+          const bool         stale = ready == Ready::stale_amg;
           try
             {
-              cg.solve(system_matrix, x, rhs, amg);
+              iterations = run_cg(rhs, tolerance, stale ? rise : limit, x);
+              if (reference_iterations == 0)
+                reference_iterations = std::max(iterations, 1u);
             }
           catch (const dealii::SolverControl::NoConvergence &e)
             {
-              AssertThrow(false,
+              AssertThrow(stale,
                           dealii::ExcMessage(
                             "elasticity: CG+AMG did not converge in " +
                             std::to_string(e.last_step) +
                             " iterations (residual " +
                             std::to_string(e.last_residual) +
                             "); is a body unconstrained?"));
+              // CG leaves its last iterate in x: go on from it.
+              rebuild_amg = true;
+              setup_preconditioner(solver);
+              iterations = e.last_step + run_cg(rhs, tolerance, limit, x);
+              reference_iterations = std::max(iterations - e.last_step, 1u);
             }
-          iterations = control.last_step();
         }
       constraint_sets[k].distribute(x);
       u.reinit(locally_owned, locally_relevant, comm);
       u = x;
       return iterations;
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    LinearElasticity<dim>::run_cg(
+      const dealii::TrilinosWrappers::MPI::Vector &rhs,
+      const double                                 tolerance,
+      const unsigned int                           max_steps,
+      dealii::TrilinosWrappers::MPI::Vector       &x)
+    {
+      dealii::SolverControl control(max_steps, tolerance * rhs.l2_norm());
+      dealii::SolverCG<dealii::TrilinosWrappers::MPI::Vector> cg(control);
+      cg.solve(system_matrix, x, rhs, amg);
+      return control.last_step();
     }
 
 

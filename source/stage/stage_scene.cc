@@ -172,13 +172,15 @@ namespace cycloid
 
       const auto              &c = settings.contact;
       contact::ContactSettings cs;
-      cs.max_iterations     = c.max_active_set_iterations;
-      cs.search_distance    = c.search_distance;
-      cs.solver_tolerance   = c.solver_tolerance;
-      cs.residual_tolerance = c.residual_tolerance;
-      cs.formulation        = c.formulation;
-      cs.solver             = c.linear_solver;
-      contact               = std::make_unique<contact::ContactProblem<dim>>(
+      cs.max_iterations       = c.max_active_set_iterations;
+      cs.search_distance      = c.search_distance;
+      cs.solver_tolerance     = c.solver_tolerance;
+      cs.inner_tolerance      = c.inner_tolerance;
+      cs.reuse_preconditioner = c.reuse_preconditioner;
+      cs.residual_tolerance   = c.residual_tolerance;
+      cs.formulation          = c.formulation;
+      cs.solver               = c.linear_solver;
+      contact                 = std::make_unique<contact::ContactProblem<dim>>(
         tria, settings.mesh.degree, materials, cs);
       // Every run times the active set's stages (assembly, preconditioner,
       // solves, updates) beside the scene's own.

@@ -54,7 +54,12 @@ namespace cycloid
      * with two right-hand sides (gaps, unit load), the preconditioner, the
      * two solves u0, u1 (for a fixed set u = u0 + beta u1), the beta that
      * meets the load (load control) or the given beta, and the next set
-     * from the nodal reactions and gaps. If a timer is given, these stages
+     * from the nodal reactions and gaps. While the set changes, the solves
+     * stop at ContactSettings::inner_tolerance (they only decide the next
+     * set); once it repeats, the same system is solved again to
+     * solver_tolerance and the set checked once more, so the reported state
+     * is a tight solution. `iterations` counts the sets assembled. If a
+     * timer is given, these stages
      * are timed in its sections "contact: constraints and assembly",
      * "contact: preconditioner", "contact: linear solves", "contact:
      * active-set update" and, once per state, "contact: residual and
@@ -104,14 +109,15 @@ namespace cycloid
       void
       assemble(const std::set<unsigned int> &active);
 
-      /** Build the preconditioner of the new matrix. */
+      /** Build the preconditioner of the new matrix, or keep the one
+       * LinearElasticity::setup_preconditioner() keeps. */
       void
-      setup_preconditioner(ContactState &state);
+      setup_preconditioner();
 
-      /** u0 (gaps, no load) and u1 (unit load), warm-started from the
-       * previous iteration's. */
+      /** u0 (gaps, no load) and u1 (unit load) to the relative
+       * @p tolerance, warm-started from the previous iteration's. */
       void
-      solve_linear_systems(ContactState &state);
+      solve_linear_systems(const double tolerance, ContactState &state);
 
       /** Nodal forces of u0 and u1, their generalised reactions Q0, Q1
        * and the beta of the state (the superposition u0 + beta u1). */
@@ -128,15 +134,17 @@ namespace cycloid
                       const double                  beta,
                       std::vector<double>          &gaps) const;
 
-      /** Whether @p next repeats @p active (converged); else throws if
-       * @p next was seen before (cycling), records @p active and moves on
-       * to @p next. */
-      bool
+      /** Record @p active and move on to @p next (a new set). If @p next
+       * was seen before: with loose solves, switch to @p tight ones (a
+       * node at the threshold may have been misjudged); with tight ones,
+       * throw (cycling). */
+      void
       settle(std::set<unsigned int>              &active,
              const std::set<unsigned int>        &next,
              std::vector<std::set<unsigned int>> &history,
              const unsigned int                   iteration,
-             const std::string                   &label) const;
+             const std::string                   &label,
+             bool                                &tight) const;
 
       /** The state's displacement, equilibrium residual (checked) and
        * slave reactions. */

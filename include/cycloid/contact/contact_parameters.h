@@ -33,6 +33,12 @@ namespace cycloid
       elasticity::LinearSolver linear_solver = elasticity::LinearSolver::cg_amg;
       /** Relative tolerance of the iterative solver [-]. */
       double solver_tolerance = 1e-10;
+      /** Relative tolerance of the iterative solver while the active set
+       * still changes (`Inner tolerance`) [-]. */
+      double inner_tolerance = 1e-10;
+      /** Keep the pattern and the AMG hierarchy over active sets, states
+       * and time steps (`Preconditioner reuse`). */
+      bool reuse_preconditioner = false;
 
       /** Declare subsections `Contact` and `Solver`. */
       static void

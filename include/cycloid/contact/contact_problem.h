@@ -231,6 +231,14 @@ namespace cycloid
         return solution.active;
       }
 
+      /** Start the next state from the active set @p active (indices of
+       * this mesh's slave nodes, e.g. an earlier active_set()). */
+      void
+      restart_active_set(const std::set<unsigned int> &active)
+      {
+        solution.active = active;
+      }
+
       /** Reaction of every slave node in the last state (force of the
        * master on the slave body, N; per unit thickness in 2D), on every
        * rank; zero at inactive nodes. */
@@ -285,6 +293,13 @@ namespace cycloid
        * elasticity problem's relevant (ghost) set. */
       void
       ghost_master_dofs();
+      /** The slave DoFs and their master DoFs, which decide the pattern. */
+      std::vector<dealii::types::global_dof_index>
+      pattern_signature() const;
+      /** Give the elasticity problem the pattern of every candidate active
+       * (LinearElasticity::set_pattern_superset()). */
+      void
+      fix_pattern();
       /** Size the per-slave reactions (zero) and gaps (initial gaps) after
        * the slave nodes were (re)collected. */
       void
@@ -307,6 +322,8 @@ namespace cycloid
       ContactSolution<dim> solution;
       /** Timer of the solver's stages; null: none. */
       dealii::TimerOutput *timer = nullptr;
+      /** pattern_signature() of the fixed pattern. */
+      std::vector<dealii::types::global_dof_index> signature;
     };
   } // namespace contact
 } // namespace cycloid

@@ -137,6 +137,13 @@ namespace cycloid
       elasticity::LinearSolver solver = elasticity::LinearSolver::cg_amg;
       /** Relative tolerance of CG. */
       double solver_tolerance = 1e-10;
+      /** Relative tolerance of CG while the active set still changes (the
+       * state's last iteration solves to solver_tolerance). */
+      double inner_tolerance = 1e-10;
+      /** Keep one sparsity pattern and the AMG hierarchy over the active
+       * sets, states and time steps of one mesh (rebuilt when the CG
+       * iterations rise); false: a new pattern and hierarchy per set. */
+      bool reuse_preconditioner = false;
       /** Largest accepted relative equilibrium residual |C^T f_int| /
        * |f_int| of a converged state. */
       double residual_tolerance = 1e-6;

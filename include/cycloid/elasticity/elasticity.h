@@ -10,6 +10,7 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
@@ -143,6 +144,22 @@ namespace cycloid
           std::function<void(dealii::AffineConstraints<double> &)>> &sets);
 
       /**
+       * Build, now, one sparsity pattern for every constraint set given to
+       * setup_constraints() until the next call or distribute_dofs(): the
+       * pattern has room for any set whose constrained DoFs and entries
+       * are among those @p superset adds to the hanging-node constraints
+       * (e.g. every contact candidate active), and the relevant DoFs are
+       * those of this call (set_extra_relevant_dofs() before it). The
+       * matrix is then built once, and the AMG hierarchy of an earlier
+       * matrix on it stays in use (see setup_preconditioner()). Without a
+       * call the pattern follows each set exactly. @p superset is not kept.
+       */
+      void
+      set_pattern_superset(
+        const std::function<void(dealii::AffineConstraints<double> &)>
+          &superset);
+
+      /**
        * Assemble the matrix with constraint set 0 and the right-hand side
        * of every set (tractions @p tractions, as in assemble(), plus the
        * inhomogeneities of each set).
@@ -157,9 +174,27 @@ namespace cycloid
        * is built already; returns whether it built one. solve_set() calls
        * it itself: an explicit call moves the set-up out of the first solve
        * (e.g. to time it on its own).
+       *
+       * On a pattern fixed by set_pattern_superset(), an AMG hierarchy
+       * built for earlier values of the matrix is kept: the matrices of
+       * consecutive active sets, load states and time steps differ in a
+       * few contact rows, so the old hierarchy still preconditions well and
+       * CG's result does not depend on it. It is rebuilt when a solve needs
+       * more than 1.5 times (plus 5) the iterations of the first solve after
+       * the last build, or when CG fails with it. A mass operator (stiffness
+       * factor 0, DynamicTerms) needs no hierarchy: solve_set() uses Jacobi
+       * for it.
        */
       bool
       setup_preconditioner(const Solver solver);
+
+      /** Preconditioners built so far (AMG hierarchies or factorisations;
+       * not the Jacobi of mass operators), for the cost report. */
+      unsigned int
+      n_preconditioner_builds() const
+      {
+        return n_builds;
+      }
 
       /**
        * Solve with the right-hand side of constraint set @p k and
@@ -399,13 +434,50 @@ namespace cycloid
 
       std::unique_ptr<Epetra_MultiVector>       null_space;
       dealii::TrilinosWrappers::PreconditionAMG amg;
-      /** Which preconditioner (if any) matches the current matrix. */
+      /** Which preconditioner (if any) matches the current matrix:
+       * stale_amg is the hierarchy of earlier values on the same pattern. */
       enum class Ready
       {
         none,
         amg,
+        stale_amg,
         direct
       } ready = Ready::none;
+      /** Whether the matrix holds a superset's pattern (kept by
+       * setup_constraints()). */
+      bool pattern_fixed = false;
+      /** A solve asked for a new hierarchy (the iterations rose). */
+      bool rebuild_amg = false;
+      /** CG iterations of the first solve after the last AMG build (0:
+       * none yet). */
+      unsigned int reference_iterations = 0;
+      /** Preconditioners built so far. */
+      unsigned int n_builds = 0;
+      /** Jacobi preconditioner of a mass operator (stiffness factor 0). */
+      dealii::TrilinosWrappers::PreconditionJacobi jacobi;
+      /** Whether jacobi matches the current matrix. */
+      bool jacobi_ready = false;
+
+      /** The locally relevant DoFs with the extra ones. */
+      void
+      update_relevant_dofs();
+
+      /** Reinitialise the matrix with the pattern of constraint set 0. */
+      void
+      build_exact_pattern();
+
+      /** Distribute @p dsp over the ranks and reinitialise the matrix with
+       * it (no preconditioner matches it then). */
+      void
+      reinit_matrix(dealii::DynamicSparsityPattern &dsp);
+
+      /** CG with the AMG on @p rhs from @p x, at most @p max_steps
+       * iterations; returns the iterations or throws NoConvergence. */
+      unsigned int
+      run_cg(const dealii::TrilinosWrappers::MPI::Vector &rhs,
+             const double                                 tolerance,
+             const unsigned int                           max_steps,
+             dealii::TrilinosWrappers::MPI::Vector       &x);
       std::unique_ptr<dealii::SolverControl>                  direct_control;
       std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> direct;
       /** solve_many()'s linear problem and MUMPS factorisation, kept for
