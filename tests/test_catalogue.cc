@@ -182,3 +182,46 @@ TEST(SweepNoise, NoiseIsNotResolvedASmoothVariationIs)
   EXPECT_NEAR(c.floor, 0.01, 1e-12);
   EXPECT_TRUE(c.resolved);
 }
+
+
+
+TEST(SweepNoise, TheChangeSinceACoarserPassReplacesTheRoughness)
+{
+  // A step as a pin engages between phases 2 and 3 of 5: rough to the
+  // second-difference criterion, though physical.
+  const std::vector<double> fine = {
+    6.147e6, 6.163e6, 6.297e6, 6.304e6, 6.147e6};
+  const auto rough = postprocess::sweep_noise(fine);
+  EXPECT_FALSE(rough.resolved) << rough.floor;
+  EXPECT_TRUE(std::isnan(rough.refinement));
+  // The same curve one level coarser, shifted by the same 6210 N m/rad
+  // everywhere (moves no fluctuation) and 0.05 % of 6.21e6 lower at
+  // phase 3.
+  std::vector<double> coarser;
+  for (const double k : fine)
+    coarser.push_back(k + 0.001 * 6.21e6);
+  coarser[2] -= 0.0005 * 6.21e6;
+  const auto n    = postprocess::sweep_noise(fine, coarser);
+  double     mean = 0, shift = 0;
+  for (unsigned int i = 0; i < fine.size(); ++i)
+    {
+      mean += fine[i] / fine.size();
+      shift += (fine[i] - coarser[i]) / fine.size();
+    }
+  double change = 0;
+  for (unsigned int i = 0; i < fine.size(); ++i)
+    change = std::max(change, std::abs(fine[i] - coarser[i] - shift) / mean);
+  EXPECT_NEAR(n.refinement, change, 1e-15);
+  // The bump less its share of the shift: 4/5 of 0.05 % at phase 3.
+  EXPECT_NEAR(n.refinement, 0.0004 * 6.21e6 / mean, 1e-12);
+  EXPECT_DOUBLE_EQ(n.floor, std::max(n.closure, n.refinement));
+  EXPECT_TRUE(n.resolved) << n.floor << " " << n.fluctuation;
+  // A coarser pass whose phase 3 differs by the whole range (4/5 of it
+  // after the shift, more than half the fluctuation): the floor follows,
+  // not resolved.
+  std::vector<double> moved = fine;
+  moved[2] -= 6.304e6 - 6.147e6;
+  EXPECT_FALSE(postprocess::sweep_noise(fine, moved).resolved);
+  // A coarser pass of another length is no coarser pass.
+  EXPECT_TRUE(std::isnan(postprocess::sweep_noise(fine, {1., 2.}).refinement));
+}

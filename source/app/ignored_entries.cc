@@ -159,6 +159,9 @@ namespace cycloid
            {Mode::mesh, Mode::transient, Mode::reduced},
            "it estimates no FE state's error (transient: one mesh through "
            "the run)"},
+          {"Mesh/Maximum sweep refinements",
+           {Mode::quasi_static, Mode::mesh, Mode::transient, Mode::reduced},
+           "only Run = phase-sweep repeats itself to resolve a fluctuation"},
           {"Mesh/Axial layers per disc",
            {Mode::reduced},
            "its coarse model has Reduced/Axial layers per disc"},

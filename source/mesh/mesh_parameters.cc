@@ -123,6 +123,17 @@ namespace cycloid
                           Integer(1, 10),
                           "Refinement cycles that Target accuracy may add "
                           "to one state [-].");
+        prm.declare_entry(
+          "Maximum sweep refinements",
+          "2",
+          Integer(0, 6),
+          "Phase sweeps with Target accuracy: how many times the whole "
+          "sweep may be repeated, each time with one more Contact "
+          "refinement, while a K_tangent fluctuation over the period is "
+          "not resolved (below twice its noise floor, fluctuation.csv); "
+          "each repeat costs about twice the sweep before it, and the "
+          "repeats stop early when the floor falls too slowly to get "
+          "there (0: never repeat) [-].");
         prm.declare_entry("Periodic meshes",
                           "true",
                           Bool(),
@@ -174,6 +185,8 @@ namespace cycloid
         error.warning_threshold = prm.get_double("Warning threshold");
         error.target_accuracy   = prm.get_double("Target accuracy");
         error.max_cycles        = prm.get_integer("Maximum accuracy cycles");
+        error.max_sweep_refinements =
+          prm.get_integer("Maximum sweep refinements");
       }
       prm.leave_subsection();
       AssertThrow(contact_size <= flank_size && flank_size <= coarse_size,

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace cycloid
@@ -342,10 +343,12 @@ namespace cycloid
              "K_tangent_fluctuation,K_secant_mean_Nm_per_rad,"
              "K_secant_fluctuation,K_tangent_period_closure,"
              "transmission_error_mean_arcsec,transmission_error_pp_arcsec,"
-             "K_tangent_noise_floor,K_tangent_fluctuation_resolved\n"
+             "K_tangent_noise_floor,K_tangent_fluctuation_resolved,"
+             "K_tangent_refinement_change\n"
           << std::setprecision(12);
-      for (const Series &x : series)
+      for (unsigned int i = 0; i < series.size(); ++i)
         {
+          const Series &x = series[i];
           // A torque cycle's zero torque has no stiffness (the states are
           // the ends of the clearance).
           if (options.torque_cycle && x.load == 0)
@@ -358,7 +361,7 @@ namespace cycloid
           // the kinematic one, which is beta itself.
           const double te_mean = te.mean * u::arcsec_per_rad,
                        te_pp   = (te.max - te.min) * u::arcsec_per_rad;
-          SweepNoise noise     = sweep_noise(x.k_tangent);
+          SweepNoise noise     = this->noise(i);
           if (!options.discretised)
             {
               // No mesh, no mesh noise (the closure of an analytic sweep
@@ -370,7 +373,7 @@ namespace cycloid
               << kt.min << ',' << kt.max << ',' << kt.fluctuation << ','
               << ks.mean << ',' << ks.fluctuation << ',' << closure << ','
               << te_mean << ',' << te_pp << ',' << noise.floor << ','
-              << (noise.resolved ? 1 : 0) << '\n';
+              << (noise.resolved ? 1 : 0) << ',' << noise.refinement << '\n';
           std::cout << "  "
                     << (options.rotation_control ? "rotation " : "torque ")
                     << x.load << (options.rotation_control ? " rad" : " N m")
@@ -388,14 +391,66 @@ namespace cycloid
 
 
 
+    double
+    Report::noise_ratio() const
+    {
+      double ratio = 0;
+      if (!active || !options.discretised)
+        return ratio;
+      for (unsigned int i = 0; i < series.size(); ++i)
+        {
+          const Series &x = series[i];
+          if ((options.torque_cycle && x.load == 0) || x.crank.size() < 2)
+            continue;
+          const SweepNoise noise = this->noise(i);
+          if (std::isnan(noise.floor))
+            return std::numeric_limits<double>::quiet_NaN();
+          // A fluctuation of exactly zero with a zero floor is resolved
+          // (nothing varies, nothing is noise).
+          if (noise.floor > 0)
+            ratio = std::max(ratio,
+                             noise.fluctuation > 0 ?
+                               noise.floor / noise.fluctuation :
+                               std::numeric_limits<double>::infinity());
+        }
+      return ratio;
+    }
+
+
+
+    SweepNoise
+    Report::noise(const unsigned int i) const
+    {
+      const auto &c = options.coarser_k_tangent;
+      return sweep_noise(series[i].k_tangent,
+                         i < c.size() ? c[i] : std::vector<double>());
+    }
+
+
+
+    std::vector<std::vector<double>>
+    Report::k_tangent_series() const
+    {
+      std::vector<std::vector<double>> k;
+      for (const Series &x : series)
+        k.push_back(x.k_tangent);
+      return k;
+    }
+
+
+
     void
     Report::print_noise(const SweepNoise &noise)
     {
+      const std::string source =
+        std::isnan(noise.refinement) ?
+          "first vs last phase, phase-to-phase roughness" :
+          "first vs last phase, the change since the coarser pass";
       if (noise.resolved)
         std::cout << "    the fluctuation is resolved: above twice the "
                      "noise floor "
-                  << noise.floor << " (doc/user-guide.md, fluctuation.csv)"
-                  << std::endl;
+                  << noise.floor << " (" << source
+                  << "; doc/user-guide.md, fluctuation.csv)" << std::endl;
       else if (std::isnan(noise.floor))
         std::cout << "    warning: the mesh noise floor of this sweep is "
                      "unknown (fewer than 5 phases and the first and last "
@@ -406,10 +461,11 @@ namespace cycloid
         std::cout << "    warning: the fluctuation " << noise.fluctuation
                   << " is not resolved: it is below twice the noise floor "
                   << noise.floor
-                  << " that mesh-to-mesh differences alone produce (first vs "
-                     "last phase, phase-to-phase roughness); refine the "
-                     "contact mesh (Mesh/Contact refinements) or take more "
-                     "phases before reading it as the stage's"
+                  << " that mesh-to-mesh differences alone produce (" << source
+                  << "); refine the contact mesh (Mesh/Contact refinements), "
+                     "take more phases, or set Mesh/Target accuracy (the "
+                     "sweep is then repeated finer and the change measured) "
+                     "before reading it as the stage's"
                   << std::endl;
     }
 

@@ -11,7 +11,8 @@ namespace cycloid
   namespace postprocess
   {
     SweepNoise
-    sweep_noise(const std::vector<double> &x)
+    sweep_noise(const std::vector<double> &x,
+                const std::vector<double> &coarser)
     {
       AssertThrow(x.size() >= 2, dealii::ExcInternalError());
       const double nan  = std::numeric_limits<double>::quiet_NaN();
@@ -33,7 +34,20 @@ namespace cycloid
           const double sigma = std::sqrt(sum / (x.size() - 2) / 6.);
           n.roughness        = 3 * sigma / std::abs(mean);
         }
-      if (std::isnan(n.roughness))
+      n.refinement = nan;
+      if (coarser.size() == x.size())
+        {
+          double shift = 0;
+          for (unsigned int i = 0; i < x.size(); ++i)
+            shift += (x[i] - coarser[i]) / x.size();
+          n.refinement = 0;
+          for (unsigned int i = 0; i < x.size(); ++i)
+            n.refinement =
+              std::max(n.refinement,
+                       std::abs(x[i] - coarser[i] - shift) / std::abs(mean));
+          n.floor = std::max(n.closure, n.refinement);
+        }
+      else if (std::isnan(n.roughness))
         n.floor = n.closure > 1e-9 ? n.closure : nan;
       else
         n.floor = std::max(n.closure, n.roughness);

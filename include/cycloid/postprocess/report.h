@@ -92,6 +92,11 @@ namespace cycloid
          * carry mesh-to-mesh noise: fluctuation.csv estimates its floor.
          * False for the analytic model (floor 0). */
         bool discretised = true;
+        /** A sweep repeated one contact refinement finer: K_tangent of
+         * each load over the phases in the previous pass, in the order of
+         * the loads (empty: none). The noise floor is then the change
+         * between the passes (postprocess::sweep_noise). */
+        std::vector<std::vector<double>> coarser_k_tangent;
         /** The states are a catalogue torque cycle (Loading/Torque cycle):
          * write torsion_curve.csv and rigidity.csv. */
         bool torque_cycle = false;
@@ -150,6 +155,18 @@ namespace cycloid
       void
       finish() const;
 
+      /** A sweep's largest noise floor over its fluctuation, over the
+       * loads of more than one crank angle (the fluctuation is resolved
+       * where this is below 1/2; NaN if some floor is unknown; 0 without
+       * a mesh or on ranks other than 0). */
+      double
+      noise_ratio() const;
+
+      /** K_tangent over the phases, one series per load in the order
+       * first written (rank 0; empty elsewhere). */
+      std::vector<std::vector<double>>
+      k_tangent_series() const;
+
       /** Header line of stiffness.csv. */
       static std::string
       stiffness_header();
@@ -191,6 +208,9 @@ namespace cycloid
       /** Print @p state's error estimate, and its warning if flagged. */
       void
       print_estimate(const results::StageState &state) const;
+      /** The noise figures of series @p i (sweeps). */
+      SweepNoise
+      noise(const unsigned int i) const;
       /** Write fluctuation.csv and print its figures (sweeps). */
       void
       write_fluctuation() const;

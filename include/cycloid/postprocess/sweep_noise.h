@@ -26,8 +26,18 @@ namespace cycloid
      *   range that pure noise shows over a sweep of 5 to 20 phases.
      * The floor is the larger of the two (the roughness needs at least
      * 5 phases; with fewer and a closure below 1e-9, which a periodic mesh
-     * gives, the floor is unknown: NaN). The fluctuation (max - min) /
-     * mean is resolved when it exceeds twice the floor.
+     * gives, the floor is unknown: NaN).
+     *
+     * Given the same sweep one contact refinement coarser, a third
+     * estimate replaces the roughness: the change of the curve's shape
+     * between the two, max_k |d_k - mean(d)| / mean with d = x - x_coarse
+     * (a uniform shift moves no fluctuation). It measures the mesh's part
+     * directly, where the roughness cannot tell a physical variation that
+     * the phases sample coarsely (a pin engaging between two phases) from
+     * noise. The floor is then max(closure, change).
+     *
+     * The fluctuation (max - min) / mean is resolved when it exceeds
+     * twice the floor.
      */
     struct SweepNoise
     {
@@ -38,7 +48,11 @@ namespace cycloid
       /** 3 rms(second differences) / sqrt(6) / mean [-] (NaN with fewer
        * than 5 phases). */
       double roughness = 0;
-      /** The noise floor: max(closure, roughness) (NaN if unknown) [-]. */
+      /** The change of the curve's shape since the coarser sweep
+       * (NaN without one) [-]. */
+      double refinement = 0;
+      /** The noise floor: max(closure, refinement) after a coarser sweep,
+       * else max(closure, roughness) (NaN if unknown) [-]. */
       double floor = 0;
       /** Whether the fluctuation exceeds twice the floor (false if the
        * floor is unknown). */
@@ -46,9 +60,11 @@ namespace cycloid
     };
 
     /** The noise figures of @p values, one per phase in crank-angle order
-     * over one closed mesh period (at least 2). */
+     * over one closed mesh period (at least 2); @p coarser: the same
+     * sweep's values one contact refinement coarser (empty: none). */
     SweepNoise
-    sweep_noise(const std::vector<double> &values);
+    sweep_noise(const std::vector<double> &values,
+                const std::vector<double> &coarser = {});
   } // namespace postprocess
 } // namespace cycloid
 

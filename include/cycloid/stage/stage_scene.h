@@ -234,6 +234,11 @@ namespace cycloid
         timing.print_summary();
       }
 
+      /** The mesh's contact level: its finest cells' level above the
+       * global refinements. */
+      unsigned int
+      contact_level() const;
+
     private:
       void
       make_grid(const mesh::MeshRequest &request);
@@ -297,10 +302,6 @@ namespace cycloid
       /** The finest level refine_at_contacts() may reach. */
       unsigned int
       level_cap() const;
-      /** The mesh's contact level: its finest cells' level above the
-       * global refinements. */
-      unsigned int
-      contact_level() const;
       /** After the triangulation changed: DoFs, contact nodes, load,
        * rotation field, and the active set carried over from
        * @p snapshot. */
