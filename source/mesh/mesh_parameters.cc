@@ -128,12 +128,13 @@ namespace cycloid
           "2",
           Integer(0, 6),
           "Phase sweeps with Target accuracy: how many times the whole "
-          "sweep may be repeated, each time with one more Contact "
-          "refinement, while a K_tangent fluctuation over the period is "
-          "not resolved (below twice its noise floor, fluctuation.csv); "
-          "each repeat costs about twice the sweep before it, and the "
-          "repeats stop early when the floor falls too slowly to get "
-          "there (0: never repeat) [-].");
+          "sweep may be repeated while a K_tangent fluctuation over the "
+          "period is not resolved (below twice its noise floor, "
+          "fluctuation.csv); each repeat refines every phase one contact "
+          "level beyond the finest phase of the pass before and takes the "
+          "change between the passes as the floor; the repeats stop early "
+          "when the floor falls too slowly to get there (0: never "
+          "repeat) [-].");
         prm.declare_entry("Periodic meshes",
                           "true",
                           Bool(),

@@ -40,8 +40,9 @@ namespace cycloid
       double target_accuracy = 0;
       /** Refinement cycles the target may add per state [-]. */
       unsigned int max_cycles = 4;
-      /** Phase sweeps under a target: passes with one more contact
-       * refinement each while the fluctuation is not resolved [-]. */
+      /** Phase sweeps under a target: repeats, each one contact level
+       * beyond the finest phase of the pass before, while the
+       * fluctuation is not resolved [-]. */
       unsigned int max_sweep_refinements = 2;
       /** Contact levels below the mesh asked for that the estimate
        * solves. */

@@ -92,7 +92,7 @@ namespace cycloid
          * carry mesh-to-mesh noise: fluctuation.csv estimates its floor.
          * False for the analytic model (floor 0). */
         bool discretised = true;
-        /** A sweep repeated one contact refinement finer: K_tangent of
+        /** A sweep repeated one contact level finer: K_tangent of
          * each load over the phases in the previous pass, in the order of
          * the loads (empty: none). The noise floor is then the change
          * between the passes (postprocess::sweep_noise). */
