@@ -9,6 +9,7 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/distributed/shared_tria.h>
+#include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -187,4 +188,33 @@ TEST(Elasticity, AmgAndDirectSolversAgree)
             << std::endl;
   EXPECT_GT(amg.iterations, 1u);
   EXPECT_LT(amg.iterations, 60u);
+}
+
+
+
+TEST(Elasticity, RowsComeInNodalBlocksUnlessRenumbered)
+{
+  // ML aggregates whole nodes in 3D only if every rank's rows are the
+  // components of one support point in order: deal.II's numbering of an
+  // FESystem (Q1 and Q2) is, a component-wise renumbering is not.
+  for (const unsigned int degree : {1u, 2u})
+    for (const bool renumber : {false, true})
+      {
+        dealii::parallel::shared::Triangulation<3> tria(
+          MPI_COMM_WORLD,
+          dealii::Triangulation<3>::none,
+          false,
+          dealii::parallel::shared::Triangulation<3>::partition_metis);
+        dealii::GridGenerator::subdivided_hyper_rectangle(
+          tria, {4, 3, 2}, dealii::Point<3>(), dealii::Point<3>(4, 3, 2));
+        elasticity::LinearElasticity<3> problem(tria,
+                                                degree,
+                                                {{0, {E, nu, 7850.}}});
+        problem.setup_system([](dealii::AffineConstraints<double> &) {});
+        if (renumber)
+          dealii::DoFRenumbering::component_wise(
+            const_cast<dealii::DoFHandler<3> &>(problem.dof_handler()));
+        EXPECT_EQ(problem.nodal_blocks(), !renumber)
+          << "degree " << degree << (renumber ? ", renumbered" : "");
+      }
 }

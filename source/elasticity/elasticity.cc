@@ -56,6 +56,7 @@ namespace cycloid
     {
       dofs.distribute_dofs(fe);
       locally_owned = dofs.locally_owned_dofs();
+      blocked       = -1;
       update_relevant_dofs();
       hanging_all.clear();
       dealii::DoFTools::make_hanging_node_constraints(dofs, hanging_all);
@@ -727,6 +728,43 @@ namespace cycloid
 
 
     template <int dim>
+    bool
+    LinearElasticity<dim>::nodal_blocks() const
+    {
+      if (blocked >= 0)
+        return blocked == 1;
+      // Row r of this rank must be component r % dim of the support point
+      // of rows r - r % dim ... (deal.II numbers a vertex's components
+      // together unless renumbered component-wise).
+      std::vector<int>                component(locally_owned.n_elements(), -1);
+      std::vector<dealii::Point<dim>> point(locally_owned.n_elements());
+      std::map<dealii::types::global_dof_index, dealii::Point<dim>> points;
+      dealii::DoFTools::map_dofs_to_support_points(*map, dofs, points);
+      std::vector<dealii::types::global_dof_index> indices(
+        fe.n_dofs_per_cell());
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(indices);
+            for (unsigned int i = 0; i < indices.size(); ++i)
+              if (locally_owned.is_element(indices[i]))
+                {
+                  const auto row = locally_owned.index_within_set(indices[i]);
+                  component[row] = fe.system_to_component_index(i).first;
+                  point[row]     = points.at(indices[i]);
+                }
+          }
+      bool is_blocked = component.size() % dim == 0;
+      for (std::size_t r = 0; is_blocked && r < component.size(); ++r)
+        is_blocked = component[r] == static_cast<int>(r % dim) &&
+                     point[r].distance(point[r - r % dim]) == 0.;
+      this->blocked = dealii::Utilities::MPI::min(is_blocked ? 1 : 0, comm);
+      return this->blocked == 1;
+    }
+
+
+
+    template <int dim>
     std::unique_ptr<Epetra_MultiVector>
     LinearElasticity<dim>::rigid_body_modes(const bool with_rotations) const
     {
@@ -819,6 +857,14 @@ namespace cycloid
       std::unique_ptr<Epetra_MultiVector> unused;
       data.set_parameters(parameters, unused, system_matrix);
       null_space = rigid_body_modes(solver == Solver::cg_amg);
+      // ML aggregates nodes, not single DoFs, when told that the rows come
+      // in blocks of dim (one support point's components). Measured
+      // (doc/solver-reuse.md): on a 3D two-disc scene of 290 k DoFs CG
+      // needs about as many iterations, but the hierarchy is smaller, so
+      // the solves take a fifth less, the set-up 40 % less and the run's
+      // peak memory a fifth less; in 2D the solves took 15 % longer.
+      if (dim == 3 && nodal_blocks())
+        parameters.set("PDE equations", dim);
       parameters.set("null space: type", "pre-computed");
       parameters.set("null space: dimension", null_space->NumVectors());
       parameters.set("null space: vectors", null_space->Values());

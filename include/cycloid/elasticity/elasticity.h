@@ -388,6 +388,12 @@ namespace cycloid
         return dofs.n_dofs();
       }
 
+      /** Whether every rank's rows come in blocks of dim, the components of
+       * one support point in order (then, in 3D, ML aggregates nodes: "PDE
+       * equations" = dim). Computed once per distribute_dofs(). Collective. */
+      bool
+      nodal_blocks() const;
+
       /**
        * Rigid-body modes of the locally owned DoFs, one column per mode
        * (dim translations, then dim(dim-1)/2 rotations about the origin),
@@ -451,6 +457,8 @@ namespace cycloid
       /** CG iterations of the first solve after the last AMG build (0:
        * none yet). */
       unsigned int reference_iterations = 0;
+      /** nodal_blocks() of the current DoFs (-1: not yet known). */
+      mutable int blocked = -1;
       /** Preconditioners built so far. */
       unsigned int n_builds = 0;
       /** Jacobi preconditioner of a mass operator (stiffness factor 0). */
