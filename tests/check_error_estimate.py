@@ -5,16 +5,21 @@ Usage: check_error_estimate.py FILE.prm EXECUTABLE WORKDIR
 
 FILE.prm is the new-user case of issue #15: the 2D slab, modified profile,
 1000 N m, every Mesh entry at its default. The script runs it
-* as it is (Contact refinements 0, which the estimate raises to 2): the
-  state is flagged (mesh_warning 1, a console WARNING naming pins and the
-  cure): the change from level 0 to 1 is tens of per cent;
-* at Contact refinements 3, the mesh that agrees with an independent FE
-  model to 0.9 % in every pin force: not flagged;
-* at Contact refinements 2 and 3 against the reference (Contact
-  refinements 2 + 4 adaptive cycles, estimate off; its own error band is
-  its distance from Contact refinements 3 + 3 adaptive cycles, the same
-  contact level on another mesh): the estimate is on the safe side of the
-  true error of K_secant, K_tangent and every pin force (true error <=
+* as it is: Mesh/Target accuracy = auto resolves to the Warning threshold
+  (0.02), announced; the state refines until its estimates are below it,
+  so it is not flagged, and it lands within 2 % of the reference in
+  K_secant, K_tangent and every pin force (of the largest), and within its
+  estimate plus the reference's band;
+* with Target accuracy 0 (Contact refinements 0, which the estimate raises
+  to 2): the state is flagged (mesh_warning 1, a console WARNING naming
+  pins and the cure): the change from level 0 to 1 is tens of per cent;
+* at Contact refinements 3 (Target accuracy 0), the mesh that agrees with
+  an independent FE model to 0.9 % in every pin force: not flagged;
+* at Contact refinements 2 and 3 (Target accuracy 0) against the reference
+  (Contact refinements 2 + 4 adaptive cycles, estimate off; its own error
+  band is its distance from Contact refinements 3 + 3 adaptive cycles, the
+  same contact level on another mesh): the estimate is on the safe side of
+  the true error of K_secant, K_tangent and every pin force (true error <=
   estimate + band), and at Contact refinements 3 at most BRACKET times the
   true error plus the band. (At Contact refinements 2 half the change from
   level 0 to 1 dominates the estimate, 10-300 times the error: measured in
@@ -76,12 +81,12 @@ def main():
     os.makedirs(args.work, exist_ok=True)
     text = open(args.prm).read()
 
-    s0, p0, log0 = run(args.exe, text, args.work, "default", {})
-    check(s0["mesh_warning"] == "1", "default mesh: not flagged (estimates %s)" % estimates(s0))
+    s0, p0, log0 = run(args.exe, text, args.work, "coarse", {"Target accuracy": 0})
+    check(s0["mesh_warning"] == "1", "coarse mesh: not flagged (estimates %s)" % estimates(s0))
     check("WARNING" in log0 and "pin" in log0 and "Contact refinements" in log0,
-          "default mesh: no console warning naming pins and the cure")
+          "coarse mesh: no console warning naming pins and the cure")
     check("Contact refinements raised from 0 to 2" in log0,
-          "default mesh: the raised refinements are not announced")
+          "coarse mesh: the raised refinements are not announced")
 
     ref = run(args.exe, text, args.work, "reference",
               {"Contact refinements": 2, "Adaptive refinement cycles": 4, "Error estimate": "false"})
@@ -89,7 +94,8 @@ def main():
                {"Contact refinements": 3, "Adaptive refinement cycles": 3, "Error estimate": "false"})
     band = errors(twin[:2], ref[:2])
     for cr in (2, 3):
-        s, p, log = run(args.exe, text, args.work, "cr%d" % cr, {"Contact refinements": cr})
+        s, p, log = run(args.exe, text, args.work, "cr%d" % cr,
+                        {"Contact refinements": cr, "Target accuracy": 0})
         est, true = estimates(s), errors((s, p), ref[:2])
         for q in est:
             print("cr%d %-10s estimate %.3g %%  true %.3g %%  reference band %.3g %%"
@@ -102,6 +108,17 @@ def main():
         if cr == 3:
             check(s["mesh_warning"] == "0", "cr3: flagged (estimates %s)" % est)
             check("WARNING" not in log, "cr3: console warning")
+
+    sd, pd, logd = run(args.exe, text, args.work, "default", {})
+    check("Target accuracy = auto: 0.02" in logd, "default run: the automatic target is not announced")
+    check(sd["mesh_warning"] == "0", "default run: flagged (estimates %s)" % estimates(sd))
+    check(max(estimates(sd).values()) <= 0.02, "default run: estimate %s above 0.02" % estimates(sd))
+    for q, e in errors((sd, pd), ref[:2]).items():
+        print("default (auto target) %-10s error %.3g %% (estimate %.3g %%)"
+              % (q, 100 * e, 100 * estimates(sd)[q]))
+        check(e <= 0.02, "default run: %s off by %.3g from the reference" % (q, e))
+        check(e <= estimates(sd)[q] + band[q],
+              "default run: %s error %.3g above its estimate %.3g" % (q, e, estimates(sd)[q]))
 
     st, pt, logt = run(args.exe, text, args.work, "target", {"Target accuracy": 0.01})
     check("target accuracy 0.01: reached" in logt, "target run: target not reported reached")

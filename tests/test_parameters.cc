@@ -322,12 +322,13 @@ TEST(Parameters, NumberOfDiscsAutoFollowsTheRun)
   EXPECT_TRUE(analytic.notes.empty());
   const auto fe_2d = parsed("set Run = quasi-static");
   EXPECT_EQ(fe_2d.scene.n_discs, 1u);
-  ASSERT_EQ(fe_2d.notes.size(), 2u);
+  ASSERT_EQ(fe_2d.notes.size(), 3u);
   EXPECT_EQ(fe_2d.notes[0], "2D FE: one disc (Scene/Number of discs = auto)");
   // The 2D error estimate (Mesh/Error estimate = auto) raises the default
-  // Contact refinements to its levels, and says so.
+  // Contact refinements to its levels, and says so (notes[1] is the
+  // automatic target, TargetAccuracyAutoFollowsTheRun).
   EXPECT_EQ(fe_2d.mesh.contact_refinements, 2u);
-  EXPECT_EQ(fe_2d.notes[1].rfind("Mesh/Error estimate: Contact refinements "
+  EXPECT_EQ(fe_2d.notes[2].rfind("Mesh/Error estimate: Contact refinements "
                                  "raised from 0 to 2",
                                  0),
             0u);
@@ -351,6 +352,61 @@ TEST(Parameters, NumberOfDiscsAutoFollowsTheRun)
                    "of discs = 2\nend")
               .scene.n_discs,
             2u);
+}
+
+
+
+TEST(Parameters, TargetAccuracyAutoFollowsTheRun)
+{
+  const auto mesh = [](const std::string &entries) {
+    return "subsection Mesh\n" + entries + "\nend\n";
+  };
+  const std::string three_d = "subsection Scene\nset Dimension = 3\nend\n";
+  // 2D quasi-static runs and sweeps: the Warning threshold, announced.
+  for (const std::string mode : {"quasi-static", "phase-sweep"})
+    {
+      const auto p = parsed("set Run = " + mode);
+      EXPECT_EQ(p.mesh.error.target_accuracy, 0.02) << mode;
+      EXPECT_TRUE(p.mesh.error.automatic_target) << mode;
+      ASSERT_GE(p.notes.size(), 2u) << mode;
+      EXPECT_EQ(p.notes[1].rfind("Mesh/Target accuracy = auto: 0.02 (the "
+                                 "Warning threshold)",
+                                 0),
+                0u)
+        << mode;
+    }
+  // It follows the threshold.
+  EXPECT_EQ(parsed("set Run = quasi-static\n" +
+                   mesh("set Warning threshold = 0.05"))
+              .mesh.error.target_accuracy,
+            0.05);
+  // A number stays what it is, and says nothing.
+  const auto explicit_target =
+    parsed("set Run = quasi-static\n" + mesh("set Target accuracy = 0"));
+  EXPECT_EQ(explicit_target.mesh.error.target_accuracy, 0.);
+  EXPECT_FALSE(explicit_target.mesh.error.automatic_target);
+  for (const std::string &note : explicit_target.notes)
+    EXPECT_EQ(note.find("Target accuracy"), std::string::npos) << note;
+  EXPECT_EQ(parsed("set Run = quasi-static\n" + three_d +
+                   mesh("set Target accuracy = 0.01"))
+              .mesh.error.target_accuracy,
+            0.01);
+  // 0 in 3D (with a note that the states carry no estimate), without the
+  // estimate, and in the modes that solve no state or keep one mesh.
+  const auto fe_3d = parsed("set Run = quasi-static\n" + three_d);
+  EXPECT_EQ(fe_3d.mesh.error.target_accuracy, 0.);
+  EXPECT_EQ(fe_3d.mesh.error.mode, mesh::ErrorControl::Mode::off);
+  ASSERT_FALSE(fe_3d.notes.empty());
+  EXPECT_NE(fe_3d.notes.back().find("no error estimate and no mesh warning"),
+            std::string::npos);
+  EXPECT_EQ(parsed("set Run = quasi-static\n" +
+                   mesh("set Error estimate = false"))
+              .mesh.error.target_accuracy,
+            0.);
+  for (const std::string mode :
+       {"analytic", "mesh", "transient", "reduced", "profile"})
+    EXPECT_EQ(parsed("set Run = " + mode).mesh.error.target_accuracy, 0.)
+      << mode;
 }
 
 

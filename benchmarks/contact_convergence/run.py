@@ -34,6 +34,7 @@ end
 subsection Mesh
   set Contact refinements = {n}
   set Contact refinement radius = 0.3
+  set Target accuracy = 0
 end
 """
 

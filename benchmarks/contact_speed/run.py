@@ -107,7 +107,8 @@ def prm_text(out, dim, discs, support, torque, mesh, modified):
     lines += ["subsection Scene", f"  set Dimension = {dim}", f"  set Number of discs = {discs}",
               "  set Pins = elastic", f"  set Pin support = {support}", "end",
               "subsection Loading", f"  set Torque = {torque}", "  set Crank angle = 0", "end",
-              "subsection Mesh", "  set Contact refinement radius = 0.3"]
+              "subsection Mesh", "  set Contact refinement radius = 0.3",
+              "  set Target accuracy = 0"]  # the mesh asked for
     lines += [f"  set {k} = {v}" for k, v in mesh.items()]
     lines += ["end"]
     return "\n".join(lines) + "\n"

@@ -101,6 +101,7 @@ def run(name, body, cr, estimate, ranks):
 subsection Mesh
   set Contact refinements = {cr}
   set Error estimate = {'true' if estimate else 'false'}
+  set Target accuracy = 0
 end
 """
     with open(prm, "w") as f:

@@ -163,7 +163,8 @@ def prm_text(out, run, dim=2, discs=1, pins="elastic", support="axis", torque=T_
     if model:
         L += ["subsection Analytic", f"  set Pair stiffness model = {model}", "end"]
     if mesh is not None:
-        L += ["subsection Mesh", "  set Contact refinement radius = 0.3"]
+        # The mesh asked for (Target accuracy = auto would refine 2D).
+        L += ["subsection Mesh", "  set Contact refinement radius = 0.3", "  set Target accuracy = 0"]
         L += [f"  set {k} = {v}" for k, v in mesh.items()] + ["end"]
     return "\n".join(L) + "\n"
 

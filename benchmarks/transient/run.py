@@ -556,7 +556,7 @@ def part_slow(args, fe):
     cr = args.slow_refinements
     sweep = fe.run(f"slow-sweep-cr{cr}-{phases}", base, {
         ("", "Write solution"): "false", ("Loading", "Torque"): torque, ("Loading", "Number of phases"): phases,
-        ("Mesh", "Contact refinements"): cr})
+        ("Mesh", "Contact refinements"): cr, ("Mesh", "Target accuracy"): 0})
     tr = fe.run(f"slow-transient-cr{cr}-{n_steps}", base, {
         ("", "Run"): "transient", ("", "Write solution"): "false", ("Loading", "Torque"): torque,
         ("Mesh", "Contact refinements"): cr,

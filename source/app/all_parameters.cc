@@ -67,9 +67,7 @@ namespace cycloid
       const std::string discs = scene.resolve_number_of_discs(run.fe());
       if (!discs.empty())
         notes.push_back(discs);
-      const std::string levels = resolve_error_estimate();
-      if (!levels.empty())
-        notes.push_back(levels);
+      resolve_error_estimate();
       AssertThrow(scene.pin_core_radius < geometry.pin_radius,
                   dealii::ExcMessage("Scene/Pin core radius must be smaller "
                                      "than Geometry/Pin radius."));
@@ -77,31 +75,64 @@ namespace cycloid
 
 
 
-    std::string
+    void
     AllParameters::resolve_error_estimate()
     {
-      using M       = parameters::RunParameters::Mode;
-      auto      &e  = mesh.error;
-      const bool fe = run.mode == M::quasi_static ||
-                      run.mode == M::phase_sweep || run.mode == M::mesh;
+      using M      = parameters::RunParameters::Mode;
+      auto      &e = mesh.error;
+      const bool solves =
+        run.mode == M::quasi_static || run.mode == M::phase_sweep;
+      const bool fe = solves || run.mode == M::mesh;
+      resolve_target_accuracy(solves);
       if (!fe || !e.estimates(scene.dimension))
         {
           // Transient runs keep one mesh; the reduced model's coarse scene
           // is no answer to estimate; 3D with auto and no target.
+          if (solves && e.mode == mesh::ErrorControl::Mode::automatic)
+            notes.push_back(
+              "Mesh/Error estimate = auto: off in 3D, so the states carry no "
+              "error estimate and no mesh warning (the coarser levels it "
+              "solves cost nearly as much as the state; Error estimate = "
+              "true or a Target accuracy turns it on)");
           e.mode = mesh::ErrorControl::Mode::off;
-          return "";
+          return;
         }
       e.mode                    = mesh::ErrorControl::Mode::on;
       const unsigned int needed = mesh::ErrorControl::coarser_levels;
       if (mesh.contact_refinements >= needed)
-        return "";
+        return;
       const unsigned int asked = mesh.contact_refinements;
       mesh.contact_refinements = needed;
-      return "Mesh/Error estimate: Contact refinements raised from " +
-             std::to_string(asked) + " to " + std::to_string(needed) +
-             " (the estimate solves each state also with its finest contact "
-             "level coarsened once and twice; Error estimate = false keeps " +
-             std::to_string(asked) + ")";
+      notes.push_back(
+        "Mesh/Error estimate: Contact refinements raised from " +
+        std::to_string(asked) + " to " + std::to_string(needed) +
+        " (the estimate solves each state also with its finest contact "
+        "level coarsened once and twice; Error estimate = false keeps " +
+        std::to_string(asked) + ")");
+    }
+
+
+
+    void
+    AllParameters::resolve_target_accuracy(const bool solves)
+    {
+      auto &e = mesh.error;
+      if (!e.automatic_target)
+        return;
+      // 3D: every cycle costs minutes and the estimate itself nearly a
+      // state; other modes solve no state or keep one mesh.
+      if (!solves || scene.dimension != 2 ||
+          e.mode == mesh::ErrorControl::Mode::off)
+        return;
+      e.target_accuracy = e.warning_threshold;
+      std::ostringstream note;
+      note << "Mesh/Target accuracy = auto: " << e.target_accuracy
+           << " (the Warning threshold): each state refines at its active "
+              "contacts, at most "
+           << e.max_cycles
+           << " cycles, until its error estimates are below it (Target "
+              "accuracy = 0 keeps the mesh asked for)";
+      notes.push_back(note.str());
     }
 
 

@@ -52,7 +52,8 @@ namespace cycloid
       Settings
       without_estimate(Settings s)
       {
-        s.mesh.error.mode = mesh::ErrorControl::Mode::off;
+        s.mesh.error.mode            = mesh::ErrorControl::Mode::off;
+        s.mesh.error.target_accuracy = 0;
         return s;
       }
 

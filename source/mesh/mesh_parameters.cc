@@ -1,6 +1,9 @@
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/base/utilities.h>
+
 #include <cycloid/mesh/mesh_parameters.h>
+#include <cycloid/parameters/or_auto.h>
 
 namespace cycloid
 {
@@ -112,12 +115,15 @@ namespace cycloid
                           "0.02 = 2 %].");
         prm.declare_entry(
           "Target accuracy",
-          "0",
-          Double(0, 1),
+          "auto",
+          parameters::OrAuto(Double(0, 1)),
           "FE states: refine at the active contacts and solve again until "
           "every error estimate is below this, at most Maximum accuracy "
-          "cycles times per state (0: off; needs Error estimate) "
-          "[relative, 0.01 = 1 %].");
+          "cycles times per state (0: off; needs Error estimate). auto: "
+          "the Warning threshold in 2D quasi-static runs and phase sweeps "
+          "(so that a default run is not one the warning flags), 0 in 3D "
+          "(there each cycle costs minutes: set it explicitly) and in the "
+          "other run modes [relative, 0.01 = 1 %].");
         prm.declare_entry("Maximum accuracy cycles",
                           "4",
                           Integer(1, 10),
@@ -127,8 +133,9 @@ namespace cycloid
           "Maximum sweep refinements",
           "2",
           Integer(0, 6),
-          "Phase sweeps with Target accuracy: how many times the whole "
-          "sweep may be repeated while a K_tangent fluctuation over the "
+          "Phase sweeps with a Target accuracy set to a number (auto does "
+          "not repeat: a repeat refines every phase and costs minutes in "
+          "2D): how many times the whole sweep may be repeated while a K_tangent fluctuation over the "
           "period is not resolved (below twice its noise floor, "
           "fluctuation.csv); each repeat refines every phase one contact "
           "level beyond the finest phase of the pass before and takes the "
@@ -183,9 +190,13 @@ namespace cycloid
         error.mode = estimate == "auto" ? ErrorControl::Mode::automatic :
                      estimate == "true" ? ErrorControl::Mode::on :
                                           ErrorControl::Mode::off;
-        error.warning_threshold = prm.get_double("Warning threshold");
-        error.target_accuracy   = prm.get_double("Target accuracy");
-        error.max_cycles        = prm.get_integer("Maximum accuracy cycles");
+        error.warning_threshold  = prm.get_double("Warning threshold");
+        const std::string target = prm.get("Target accuracy");
+        error.automatic_target   = parameters::is_auto(target);
+        error.target_accuracy    = error.automatic_target ?
+                                     0 :
+                                     dealii::Utilities::string_to_double(target);
+        error.max_cycles         = prm.get_integer("Maximum accuracy cycles");
         error.max_sweep_refinements =
           prm.get_integer("Maximum sweep refinements");
       }

@@ -440,7 +440,7 @@ namespace cycloid
 
 
     void
-    Report::print_noise(const SweepNoise &noise)
+    Report::print_noise(const SweepNoise &noise) const
     {
       const std::string source =
         std::isnan(noise.refinement) ?
@@ -462,10 +462,13 @@ namespace cycloid
                   << " is not resolved: it is below twice the noise floor "
                   << noise.floor
                   << " that mesh-to-mesh differences alone produce (" << source
-                  << "); refine the contact mesh (Mesh/Contact refinements), "
-                     "take more phases, or set Mesh/Target accuracy (the "
-                     "sweep is then repeated finer and the change measured) "
-                     "before reading it as the stage's"
+                  << (options.sweep_target ?
+                        "); the sweep's target accuracy decides below "
+                        "whether to repeat it finer" :
+                        "); refine the contact mesh (Mesh/Contact "
+                        "refinements), take more phases, or set Mesh/Target "
+                        "accuracy (the sweep is then repeated finer and the "
+                        "change measured) before reading it as the stage's")
                   << std::endl;
     }
 

@@ -46,12 +46,21 @@ namespace cycloid
         parameters::LoadingParameters::lost_motion_torque;
       const auto &m             = settings.stage.mesh;
       options.warning_threshold = m.error.warning_threshold;
+      // Under a target the state has already refined as far as it was
+      // allowed: the cure is to allow more cycles.
       options.refine_advice =
-        "Cure: raise Mesh/Contact refinements (now " +
-        std::to_string(m.contact_refinements) +
-        ") by one, or set Mesh/Target accuracy (now " +
-        dealii::Utilities::to_string(m.error.target_accuracy) +
-        ") to the accuracy wanted (doc/error-estimate.md).";
+        m.error.target_accuracy > 0 ?
+          "Cure: raise Mesh/Maximum accuracy cycles (now " +
+            std::to_string(m.error.max_cycles) +
+            ") or Mesh/Contact refinements (now " +
+            std::to_string(m.contact_refinements) +
+            ") so that Target accuracy (" +
+            dealii::Utilities::to_string(m.error.target_accuracy) +
+            ") can be reached (doc/error-estimate.md)." :
+          "Cure: raise Mesh/Contact refinements (now " +
+            std::to_string(m.contact_refinements) +
+            ") by one, or set Mesh/Target accuracy (now 0) to the accuracy "
+            "wanted (doc/error-estimate.md).";
       return options;
     }
 

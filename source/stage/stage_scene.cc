@@ -19,6 +19,7 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -294,16 +295,29 @@ namespace cycloid
     {
       // The DoFs exist, the matrices not yet (they are allocated at the
       // first solve): the last moment to stop a run that cannot fit.
-      const auto estimate =
-        estimate_cost({dim,
-                       settings.scene.n_discs,
-                       contact->elasticity().n_dofs(),
-                       settings.mesh.degree,
-                       settings.mesh.adaptive_cycles,
-                       dealii::Utilities::MPI::n_mpi_processes(comm),
-                       settings.mesh.error.estimates(dim)});
-      pcout << "  " << estimate.line() << std::endl;
-      check_memory(estimate, available_memory_bytes(comm), settings.mesh);
+      const auto &m = settings.mesh;
+      CostInputs  in{dim,
+                    settings.scene.n_discs,
+                    contact->elasticity().n_dofs(),
+                    m.degree,
+                    m.adaptive_cycles,
+                    dealii::Utilities::MPI::n_mpi_processes(comm),
+                    m.error.estimates(dim)};
+      const auto  estimate = estimate_cost(in);
+      pcout << "  " << estimate.line();
+      if (m.error.target_accuracy > 0)
+        {
+          // A state that misses the target on the mesh asked for costs
+          // more: say how much at worst, before the user waits for it.
+          in.adaptive_cycles += m.error.max_cycles;
+          std::ostringstream worst;
+          worst << std::setprecision(2) << estimate_cost(in).seconds_per_state;
+          pcout << ", at most " << worst.str()
+                << " s if Target accuracy takes all its " << m.error.max_cycles
+                << " cycles";
+        }
+      pcout << std::endl;
+      check_memory(estimate, available_memory_bytes(comm), m);
     }
 
 

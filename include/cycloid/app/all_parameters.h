@@ -88,12 +88,18 @@ namespace cycloid
       void
       parse_parameters(dealii::ParameterHandler &prm);
 
-      /** Resolve `Mesh/Error estimate` for the run mode and dimension: on
-       * (raising Contact refinements to the levels the estimate coarsens)
-       * or off. Returns the note for the user, empty if nothing changed
-       * that the file asked for. */
-      std::string
+      /** Resolve `Mesh/Error estimate` (and first `Mesh/Target accuracy`)
+       * for the run mode and dimension: on (raising Contact refinements to
+       * the levels the estimate coarsens) or off. Adds a note for the user
+       * where the result is not what the file says. */
+      void
       resolve_error_estimate();
+
+      /** Resolve `Mesh/Target accuracy = auto`: the Warning threshold if
+       * the run @p solves FE states in 2D with the estimate not off, else
+       * 0 (with a note when it is set). */
+      void
+      resolve_target_accuracy(bool solves);
 
       /**
        * Declare, read @p filename (with a clear error if it does not exist

@@ -38,6 +38,12 @@ namespace cycloid
       /** Refine at the active contacts until the largest estimate is
        * below this (0: off) [-]. */
       double target_accuracy = 0;
+      /** Whether `Target accuracy = auto`: AllParameters resolves it to
+       * warning_threshold for 2D quasi-static runs and phase sweeps (the
+       * mesh the user gets then is one the warning would not flag), to 0
+       * otherwise. A sweep under an automatic target does not repeat
+       * itself finer (each repeat refines every phase, minutes in 2D). */
+      bool automatic_target = false;
       /** Refinement cycles the target may add per state [-]. */
       unsigned int max_cycles = 4;
       /** Phase sweeps under a target: repeats, each one contact level

@@ -97,6 +97,10 @@ namespace cycloid
          * the loads (empty: none). The noise floor is then the change
          * between the passes (postprocess::sweep_noise). */
         std::vector<std::vector<double>> coarser_k_tangent;
+        /** The sweep runs under Mesh/Target accuracy, which decides after
+         * the fluctuation is printed whether to repeat the sweep finer: an
+         * unresolved fluctuation's warning defers to it. */
+        bool sweep_target = false;
         /** The states are a catalogue torque cycle (Loading/Torque cycle):
          * write torsion_curve.csv and rigidity.csv. */
         bool torque_cycle = false;
@@ -216,8 +220,8 @@ namespace cycloid
       write_fluctuation() const;
       /** Print whether a sweep's fluctuation stands above its noise
        * floor, and what to do when it does not. */
-      static void
-      print_noise(const SweepNoise &noise);
+      void
+      print_noise(const SweepNoise &noise) const;
       /** Write torsion_curve.csv and rigidity.csv and print the catalogue
        * figures (torque cycles). */
       void
