@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <optional>
 
 namespace cycloid
@@ -100,7 +101,8 @@ namespace cycloid
           std::set<unsigned int> next;
           {
             const OptionalScope scope(timer, "contact: active-set update");
-            superpose(load_control, value, label, state);
+            superpose(
+              load_control, value, label, solution.active.empty(), state);
             next = next_active_set(solution.active, state.beta, solution.gaps);
           }
           if (verbose)
@@ -211,6 +213,7 @@ namespace cycloid
     ActiveSetSolver<dim>::superpose(const bool         load_control,
                                     const double       value,
                                     const std::string &label,
+                                    const bool         free,
                                     ContactState      &state)
     {
       f0            = problem.effective_forces(u0, true);
@@ -227,10 +230,42 @@ namespace cycloid
                         " (the loaded body moves freely for this active set); "
                         "check the clearances and the search distance."));
           state.beta = (value - q0) / q1;
+          // A free body (empty set; a quasi-static state, where nothing
+          // else resists) turns to the wrong side or far beyond its first
+          // contact: take the first closure instead. A beta short of it
+          // (a transient step, the mass resisting) is the state.
+          const double closure =
+            free && value != 0 ? first_closure(value) : std::nan("");
+          if (std::isfinite(closure) &&
+              !(state.beta / closure >= 0 && state.beta / closure <= 1))
+            state.beta = closure;
         }
       else
         state.beta = value;
       state.reaction = q0 + state.beta * q1;
+    }
+
+
+
+    template <int dim>
+    double
+    ActiveSetSolver<dim>::first_closure(const double value) const
+    {
+      // The gap is linear in beta: g(beta) = g(0) + beta (g(1) - g(0)).
+      const auto  &owned = problem.locally_owned_dofs();
+      const double sign  = value > 0 ? 1. : -1.;
+      double       beta  = std::numeric_limits<double>::infinity();
+      for (const SlaveNode<dim> &s : system.slaves)
+        {
+          if (s.hanging || !owned.is_element(s.dofs[0]))
+            continue;
+          const double g0    = formulation.gap(s, u0, u1, 0.);
+          const double slope = sign * (formulation.gap(s, u0, u1, 1.) - g0);
+          if (slope < 0 && g0 >= 0)
+            beta = std::min(beta, -g0 / slope);
+        }
+      beta = dealii::Utilities::MPI::min(beta, comm);
+      return std::isfinite(beta) ? sign * beta * (1. + 1e-6) : std::nan("");
     }
 
 
@@ -290,11 +325,16 @@ namespace cycloid
           history.clear();
         }
       else
-        AssertThrow(!seen,
-                    dealii::ExcMessage(
-                      "contact: the active set cycles (a set seen before "
-                      "returned at iteration " +
-                      std::to_string(iteration) + ") at " + label + "."));
+        AssertThrow(
+          !seen,
+          dealii::ExcMessage(
+            "contact: the active set cycles (a set seen before returned at "
+            "iteration " +
+            std::to_string(iteration) + ") at " + label +
+            ". Approach the load through a list of torques (each state "
+            "starts from the set of the one before) or refine the contact "
+            "mesh (Mesh/Contact refinements); doc/stability.md, "
+            "\"Active-set cycling\"."));
       history.push_back(active);
       active = next;
     }

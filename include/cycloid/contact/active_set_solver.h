@@ -120,12 +120,26 @@ namespace cycloid
       solve_linear_systems(const double tolerance, ContactState &state);
 
       /** Nodal forces of u0 and u1, their generalised reactions Q0, Q1
-       * and the beta of the state (the superposition u0 + beta u1). */
+       * and the beta of the state (the superposition u0 + beta u1). A
+       * load-controlled iterate whose set is empty (@p free) and whose beta
+       * has the wrong sign or passes the first_closure() takes the latter
+       * instead (a beta short of it, as in a transient step, stays). */
       void
       superpose(const bool         load_control,
                 const double       value,
                 const std::string &label,
+                const bool         free,
                 ContactState      &state);
+
+      /** The smallest |beta| in the direction of the load @p value at
+       * which a node's gap closes, times (1 + 1e-6) so that the nodes
+       * closing first (and their ties) enter the next set; NaN if no node
+       * closes in that direction. For an empty set under load control,
+       * where (value - Q0) / Q1 divides by the body's vanishing resistance
+       * and pushes nearly every node in at once (measured: an active set
+       * that then shrinks back to empty, a cycle). */
+      double
+      first_closure(const double value) const;
 
       /** The next active set from the reactions and gaps of u0 + beta u1
        * (gathered over the ranks), and every node's gap in @p gaps. */
