@@ -265,7 +265,10 @@ namespace cycloid
             beta = std::min(beta, -g0 / slope);
         }
       beta = dealii::Utilities::MPI::min(beta, comm);
-      return std::isfinite(beta) ? sign * beta * (1. + 1e-6) : std::nan("");
+      // Just past the closure, also where it is 0 (a node touching at the
+      // start: it must enter, or the empty set would look converged).
+      return std::isfinite(beta) ? sign * (beta * (1. + 1e-6) + 1e-12) :
+                                   std::nan("");
     }
 
 

@@ -135,8 +135,8 @@ namespace cycloid
           Integer(0, 6),
           "Phase sweeps with a Target accuracy set to a number (auto does "
           "not repeat: a repeat refines every phase and costs minutes in "
-          "2D): how many times the whole sweep may be repeated while a K_tangent fluctuation over the "
-          "period is not resolved (below twice its noise floor, "
+          "2D): how many times the whole sweep may be repeated while a "
+          "K_tangent fluctuation over the period is not resolved (below twice its noise floor, "
           "fluctuation.csv); each repeat refines every phase one contact "
           "level beyond the finest phase of the pass before and takes the "
           "change between the passes as the floor; the repeats stop early "

@@ -132,8 +132,9 @@ namespace cycloid
                 ContactState      &state);
 
       /** The smallest |beta| in the direction of the load @p value at
-       * which a node's gap closes, times (1 + 1e-6) so that the nodes
-       * closing first (and their ties) enter the next set; NaN if no node
+       * which a node's gap closes, times (1 + 1e-6) plus 1e-12 so that
+       * the nodes closing first (and their ties, and a node touching at
+       * beta = 0) enter the next set; NaN if no node
        * closes in that direction. For an empty set under load control,
        * where (value - Q0) / Q1 divides by the body's vanishing resistance
        * and pushes nearly every node in at once (measured: an active set
