@@ -380,6 +380,20 @@ TEST(Parameters, TargetAccuracyAutoFollowsTheRun)
                    mesh("set Warning threshold = 0.05"))
               .mesh.error.target_accuracy,
             0.05);
+  // A threshold of 0 (no warning) makes auto 0, and the note says so
+  // instead of promising refinement.
+  const auto no_warning =
+    parsed("set Run = quasi-static\n" + mesh("set Warning threshold = 0"));
+  EXPECT_EQ(no_warning.mesh.error.target_accuracy, 0.);
+  bool said_off = false;
+  for (const std::string &note : no_warning.notes)
+    {
+      EXPECT_EQ(note.find("until its error estimates are below"),
+                std::string::npos)
+        << note;
+      said_off |= note.rfind("Mesh/Target accuracy = auto: 0 (off)", 0) == 0;
+    }
+  EXPECT_TRUE(said_off);
   // A number stays what it is, and says nothing.
   const auto explicit_target =
     parsed("set Run = quasi-static\n" + mesh("set Target accuracy = 0"));

@@ -124,6 +124,16 @@ namespace cycloid
       if (!solves || scene.dimension != 2 ||
           e.mode == mesh::ErrorControl::Mode::off)
         return;
+      if (e.warning_threshold <= 0)
+        {
+          // A threshold of 0 turns the warning off, and with it the
+          // target it stands for: say so rather than promise refinement.
+          notes.push_back(
+            "Mesh/Target accuracy = auto: 0 (off), because Warning "
+            "threshold = 0 turns the warning off; the states keep the mesh "
+            "asked for (set Target accuracy to a number to refine)");
+          return;
+        }
       e.target_accuracy = e.warning_threshold;
       std::ostringstream note;
       note << "Mesh/Target accuracy = auto: " << e.target_accuracy

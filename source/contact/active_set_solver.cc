@@ -8,6 +8,7 @@
 #include <iostream>
 #include <limits>
 #include <optional>
+#include <sstream>
 
 namespace cycloid
 {
@@ -64,6 +65,8 @@ namespace cycloid
       // set), then the unchanged set once more to the tight tolerance.
       bool tight     = settings.inner_tolerance <= settings.solver_tolerance;
       bool assembled = false;
+      // Set after a cycle: the union of its sets is being solved.
+      bool cycle_union = false;
       for (unsigned int it = 0;; ++it)
         {
           AssertThrow(it < settings.max_iterations,
@@ -83,8 +86,11 @@ namespace cycloid
           const double t_assemble = clock.wall_time();
           setup_preconditioner();
           const double t_preconditioner = clock.wall_time();
-          solve_linear_systems(tight ? settings.solver_tolerance :
-                                       settings.inner_tolerance,
+          // A cycle's union is solved 100 times tighter: the nodes that
+          // came and went carry forces at the level of CG's residual.
+          solve_linear_systems((tight ? settings.solver_tolerance :
+                                        settings.inner_tolerance) *
+                                 (cycle_union ? cycle_tightening : 1.),
                                state);
           state.preconditioner_setups +=
             problem.n_preconditioner_builds() - builds;
@@ -99,18 +105,30 @@ namespace cycloid
                       << std::endl;
 
           std::set<unsigned int> next;
+          SetChange              change;
           {
             const OptionalScope scope(timer, "contact: active-set update");
             superpose(
               load_control, value, label, solution.active.empty(), state);
-            next = next_active_set(solution.active, state.beta, solution.gaps);
+            next = next_active_set(solution.active,
+                                   state.beta,
+                                   solution.gaps,
+                                   change);
           }
           if (verbose)
             std::cerr << "  [active set] " << label << ", iteration " << it
                       << ": beta " << state.beta << ", Q0 " << q0 << ", Q1 "
                       << q1 << ", active " << solution.active.size() << " -> "
-                      << next.size() << std::endl;
+                      << next.size() << ", largest tension "
+                      << change.largest_tension << " of force "
+                      << change.largest_force << std::endl;
           assembled = next == solution.active;
+          if (cycle_union)
+            {
+              // The union's solve decides: accepted, or an error.
+              accept_cycle_union(change, label, state);
+              break;
+            }
           if (assembled && tight)
             break;
           if (assembled)
@@ -119,7 +137,8 @@ namespace cycloid
               history.clear();
             }
           else
-            settle(solution.active, next, history, it, label, tight);
+            cycle_union =
+              settle(solution.active, next, history, it, label, tight);
         }
       finish(label, state, solution);
       return state;
@@ -277,7 +296,8 @@ namespace cycloid
     std::set<unsigned int>
     ActiveSetSolver<dim>::next_active_set(const std::set<unsigned int> &active,
                                           const double                  beta,
-                                          std::vector<double> &gaps) const
+                                          std::vector<double>          &gaps,
+                                          SetChange &change) const
     {
       // lambda_i + c (-gap_i) > 0 with lambda = 0 off the set and gap = 0
       // on it: active nodes stay while in compression, inactive ones enter
@@ -299,18 +319,34 @@ namespace cycloid
           const bool was_active = active.count(i);
           if ((was_active && lambda > 0) || (!was_active && gap < 0))
             mine.push_back(i);
+          if (was_active)
+            {
+              change.largest_force = std::max(change.largest_force, lambda);
+              if (lambda <= 0)
+                change.largest_tension =
+                  std::max(change.largest_tension, -lambda);
+            }
+          else if (gap < 0)
+            change.entering = true;
         }
       std::set<unsigned int> next;
       for (const auto &part : dealii::Utilities::MPI::all_gather(comm, mine))
         next.insert(part.begin(), part.end());
       dealii::Utilities::MPI::sum(my_gaps, comm, gaps);
+      change.largest_force =
+        dealii::Utilities::MPI::max(change.largest_force, comm);
+      change.largest_tension =
+        dealii::Utilities::MPI::max(change.largest_tension, comm);
+      change.entering =
+        dealii::Utilities::MPI::max(static_cast<int>(change.entering), comm) >
+        0;
       return next;
     }
 
 
 
     template <int dim>
-    void
+    bool
     ActiveSetSolver<dim>::settle(std::set<unsigned int>              &active,
                                  const std::set<unsigned int>        &next,
                                  std::vector<std::set<unsigned int>> &history,
@@ -327,19 +363,59 @@ namespace cycloid
           tight = true;
           history.clear();
         }
-      else
-        AssertThrow(
-          !seen,
-          dealii::ExcMessage(
-            "contact: the active set cycles (a set seen before returned at "
-            "iteration " +
-            std::to_string(iteration) + ") at " + label +
-            ". Approach the load through a list of torques (each state "
-            "starts from the set of the one before) or refine the contact "
-            "mesh (Mesh/Contact refinements); doc/stability.md, "
-            "\"Active-set cycling\"."));
+      else if (seen)
+        {
+          // A tight cycle: the nodes that come and go sit where the
+          // consistent mass or the masters' coupling (not an M-matrix)
+          // makes a node penetrate when it is free and pull when it is
+          // held. Hold every node of the cycle's sets; the caller checks
+          // that the pull left is negligible (accept_cycle_union()).
+          std::set<unsigned int> all(active.begin(), active.end());
+          for (auto set = std::find(history.begin(), history.end(), next);
+               set != history.end();
+               ++set)
+            all.insert(set->begin(), set->end());
+          all.insert(next.begin(), next.end());
+          if (verbose)
+            std::cerr << "  [active set] " << label << ", iteration "
+                      << iteration << ": cycle; solving the union of its "
+                      << "sets, " << all.size() << " nodes" << std::endl;
+          active = all;
+          return true;
+        }
       history.push_back(active);
       active = next;
+      return false;
+    }
+
+
+
+    template <int dim>
+    void
+    ActiveSetSolver<dim>::accept_cycle_union(const SetChange   &change,
+                                             const std::string &label,
+                                             ContactState      &state) const
+    {
+      const double       tension = change.largest_force > 0 ?
+                                     change.largest_tension / change.largest_force :
+                                     std::numeric_limits<double>::infinity();
+      std::ostringstream what;
+      what << "contact: the active set cycles at " << label
+           << ", and the union of the cycle's sets ";
+      if (change.entering)
+        what << "leaves a node penetrating";
+      else
+        what << "holds a node in tension at " << tension
+             << " of the largest nodal force (at most " << cycle_tension_limit
+             << " accepted)";
+      what << ". Approach the load through a list of torques (each state "
+              "starts from the set of the one before) or refine the contact "
+              "mesh (Mesh/Contact refinements); doc/stability.md, "
+              "\"Active-set cycling\".";
+      AssertThrow(!change.entering && tension <= cycle_tension_limit,
+                  dealii::ExcMessage(what.str()));
+      ++state.cycles_broken;
+      state.cycle_tension = std::max(state.cycle_tension, tension);
     }
 
 

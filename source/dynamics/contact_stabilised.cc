@@ -2,6 +2,8 @@
 
 #include <cycloid/dynamics/contact_stabilised.h>
 
+#include <algorithm>
+
 namespace cycloid
 {
   namespace dynamics
@@ -121,6 +123,9 @@ namespace cycloid
       out.iterations = p.iterations + out.state.iterations;
       out.state.linear_iterations += p.linear_iterations;
       out.state.preconditioner_setups += p.preconditioner_setups;
+      out.state.cycles_broken += p.cycles_broken;
+      out.state.cycle_tension =
+        std::max(out.state.cycle_tension, p.cycle_tension);
       out.u = owned_copy(contact, contact.displacement());
       // v_{n+1} = v_n + 2/dt (u_{n+1} - u~); the acceleration is not
       // part of the scheme's state (zero).

@@ -284,6 +284,13 @@ namespace cycloid
       if (s.dofs > 0)
         std::cout << ", dofs " << s.dofs;
       std::cout << ", " << s.wall_s << " s" << std::endl;
+      if (s.cycles_broken > 0)
+        std::cout << "    note: the active set cycled; the union of the "
+                     "cycle's sets was taken (largest tension left "
+                  << s.cycle_tension
+                  << " of the largest nodal force; doc/stability.md, "
+                     "\"Active-set cycling\")"
+                  << std::endl;
       print_estimate(s);
     }
 

@@ -255,6 +255,15 @@ namespace cycloid
           report.write(state, state.torque);
           report.write(e, state);
           energy.check(e, step_label(step, e.time_s, state.crank), pcout);
+          if (state.cycles_broken > 0)
+            pcout << "  note: the active set cycled " << state.cycles_broken
+                  << " time(s) at " << step_label(step, e.time_s, state.crank)
+                  << "; the union of each cycle's sets was taken (largest "
+                     "tension left "
+                  << state.cycle_tension
+                  << " of the largest nodal force; doc/stability.md, "
+                     "\"Active-set cycling\")"
+                  << std::endl;
           series.add(state, e);
           if (time.output_due(step))
             scene.output_results(step, record);

@@ -908,6 +908,8 @@ namespace cycloid
       s.iterations            = result.iterations;
       s.linear_iterations     = result.linear_iterations;
       s.preconditioner_setups = result.preconditioner_setups;
+      s.cycles_broken         = result.cycles_broken;
+      s.cycle_tension         = result.cycle_tension;
       s.pins.resize(nd * zp);
       for (unsigned int d = 0; d < nd; ++d)
         for (unsigned int j = 0; j < zp; ++j)

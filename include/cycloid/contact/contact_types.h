@@ -170,6 +170,12 @@ namespace cycloid
        * of the state: one per active-set iteration, as each changes the
        * matrix. */
       unsigned int preconditioner_setups = 0;
+      /** Active-set cycles broken by taking the union of the cycle's sets
+       * (ActiveSetSolver, doc/stability.md \"Active-set cycling\"). */
+      unsigned int cycles_broken = 0;
+      /** The largest tension that a broken cycle's union left at a node,
+       * over the largest nodal contact force [-]. */
+      double cycle_tension = 0;
     };
 
     /**

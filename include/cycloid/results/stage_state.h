@@ -172,6 +172,12 @@ namespace cycloid
       unsigned int preconditioner_setups = 0;
       /** Linear-solver iterations of the state. */
       unsigned long linear_iterations = 0;
+      /** Active-set cycles that the FE state broke (its final solve; a
+       * transient step's solves), and the largest tension that left at a
+       * node over the largest nodal force (contact::ContactState). */
+      unsigned int cycles_broken = 0;
+      /** See cycles_broken [-]. */
+      double cycle_tension = 0;
       /** Degrees of freedom (0 for models without a mesh). */
       unsigned long dofs = 0;
       /** Wall time of the state [s]. */
