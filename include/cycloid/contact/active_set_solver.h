@@ -188,8 +188,8 @@ namespace cycloid
       /** The largest tension accepted at a node of a broken cycle's union,
        * relative to the largest nodal contact force. The cycles measured
        * (consistent-mass projections of the contact-stabilised scheme,
-       * doc/stability.md) leave 1e-5 or less; a tension this small moves a
-       * pin force by less than 1e-3 of a nodal force. */
+       * doc/stability.md §4c) left 0; a tension this small moves a pin
+       * force by less than 1e-3 of a nodal force. */
       static constexpr double cycle_tension_limit = 1e-3;
 
       /** The factor on the CG tolerance of the solve of a cycle's union. */
