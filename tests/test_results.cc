@@ -32,6 +32,8 @@ namespace
     s.iterations            = 11;
     s.preconditioner_setups = 13;
     s.linear_iterations     = 5000000000ul;
+    s.cycles_broken         = 3;
+    s.cycle_tension         = 4.5e-7;
     s.dofs                  = 6000000001ul;
     s.wall_s                = 2.718281828459045;
     s.peak_memory_MB        = 1234.5;
@@ -88,7 +90,10 @@ TEST(StateBuffer, StructsHaveTheFieldsThePackingKnows)
             2 * sizeof(unsigned int) /* step + padding */ + 6 * sizeof(double) +
               sizeof(std::vector<results::PinState>) +
               sizeof(results::ErrorEstimate) + 2 * sizeof(unsigned int) +
-              2 * sizeof(unsigned long) + 2 * sizeof(double));
+              sizeof(unsigned long) +
+              2 * sizeof(unsigned int) /* cycles_broken + padding */ +
+              sizeof(double) /* cycle_tension */ + sizeof(unsigned long) +
+              2 * sizeof(double));
 }
 
 
@@ -99,7 +104,7 @@ TEST(StateBuffer, EveryFieldComesBackExactly)
     {
       const results::StageState a      = distinct_state(n_pins);
       const std::vector<double> buffer = results::StateBuffer::pack(a);
-      EXPECT_EQ(buffer.size(), 19u + 20u * n_pins);
+      EXPECT_EQ(buffer.size(), 21u + 20u * n_pins);
       const results::StageState b = results::StateBuffer::unpack(buffer);
       EXPECT_EQ(b.step, a.step);
       EXPECT_EQ(b.crank, a.crank);
@@ -111,6 +116,8 @@ TEST(StateBuffer, EveryFieldComesBackExactly)
       EXPECT_EQ(b.iterations, a.iterations);
       EXPECT_EQ(b.preconditioner_setups, a.preconditioner_setups);
       EXPECT_EQ(b.linear_iterations, a.linear_iterations);
+      EXPECT_EQ(b.cycles_broken, a.cycles_broken);
+      EXPECT_EQ(b.cycle_tension, a.cycle_tension);
       EXPECT_EQ(b.dofs, a.dofs);
       EXPECT_EQ(b.wall_s, a.wall_s);
       EXPECT_EQ(b.peak_memory_MB, a.peak_memory_MB);

@@ -28,6 +28,8 @@ namespace cycloid
         f(s.iterations);
         f(s.preconditioner_setups);
         f(s.linear_iterations);
+        f(s.cycles_broken);
+        f(s.cycle_tension);
         f(s.dofs);
         f(s.wall_s);
         f(s.peak_memory_MB);
