@@ -67,6 +67,7 @@ namespace cycloid
       bool assembled = false;
       // Set after a cycle: the union of its sets is being solved.
       bool cycle_union = false;
+      warm_start(solution);
       for (unsigned int it = 0;; ++it)
         {
           AssertThrow(it < settings.max_iterations,
@@ -141,7 +142,50 @@ namespace cycloid
               settle(solution.active, next, history, it, label, tight);
         }
       finish(label, state, solution);
+      keep_start(solution);
       return state;
+    }
+
+
+
+    template <int dim>
+    void
+    ActiveSetSolver<dim>::warm_start(const ContactSolution<dim> &solution)
+    {
+      const auto &terms = problem.dynamic_terms();
+      for (const WarmStart &w : solution.starts)
+        if (w.stiffness == terms.stiffness && w.mass == terms.mass &&
+            w.u0.size() == problem.dof_handler().n_dofs())
+          {
+            u0 = w.u0;
+            u1 = w.u1;
+            return;
+          }
+    }
+
+
+
+    template <int dim>
+    void
+    ActiveSetSolver<dim>::keep_start(ContactSolution<dim> &solution) const
+    {
+      const auto &terms  = problem.dynamic_terms();
+      auto       &starts = solution.starts;
+      starts.erase(std::remove_if(starts.begin(),
+                                  starts.end(),
+                                  [&terms](const WarmStart &w) {
+                                    return w.stiffness == terms.stiffness &&
+                                           w.mass == terms.mass;
+                                  }),
+                   starts.end());
+      WarmStart w;
+      w.stiffness = terms.stiffness;
+      w.mass      = terms.mass;
+      w.u0        = u0;
+      w.u1        = u1;
+      starts.insert(starts.begin(), std::move(w));
+      if (starts.size() > 2)
+        starts.resize(2);
     }
 
 
@@ -235,8 +279,8 @@ namespace cycloid
                                     const bool         free,
                                     ContactState      &state)
     {
-      f0            = problem.effective_forces(u0, true);
-      f1            = problem.effective_forces(u1, false);
+      f0            = problem.effective_forces(u0, true, system.force_cells);
+      f1            = problem.effective_forces(u1, false, system.force_cells);
       q0            = reaction(f0);
       q1            = reaction(f1);
       state.tangent = q1;

@@ -4,6 +4,7 @@
 #include <cycloid/contact/contact_problem.h>
 #include <cycloid/contact/vtu_output.h>
 
+#include <algorithm>
 #include <limits>
 
 namespace cycloid
@@ -88,6 +89,32 @@ namespace cycloid
       fixed.clear();
       load.clear();
       reset_slave_results();
+      force_dofs.clear();
+      cells_at_forces.clear();
+      solution.starts.clear();
+    }
+
+
+
+    template <int dim>
+    const typename elasticity::LinearElasticity<dim>::CellList &
+    ContactProblem<dim>::force_cells()
+    {
+      std::vector<dealii::types::global_dof_index> wanted;
+      for (const auto &s : slaves)
+        wanted.insert(wanted.end(), s.dofs.begin(), s.dofs.end());
+      for (const auto &[d, g] : load)
+        wanted.push_back(d);
+      std::sort(wanted.begin(), wanted.end());
+      wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+      // The same DoFs on the same mesh (setup() clears force_dofs): the
+      // same cells. A time step's new candidates change them.
+      if (wanted != force_dofs || wanted.empty())
+        {
+          cells_at_forces = problem->owned_cells_touching(wanted);
+          force_dofs      = std::move(wanted);
+        }
+      return cells_at_forces;
     }
 
 
@@ -326,8 +353,9 @@ namespace cycloid
                                      const double       value,
                                      const std::string &label)
     {
-      const ContactSystem<dim> system{slaves, ties, fixed, load};
-      ActiveSetSolver<dim>     solver(
+      const ContactSystem<dim> system{
+        slaves, ties, fixed, load, &force_cells()};
+      ActiveSetSolver<dim> solver(
         *problem, *formulation, settings, system, timer);
       return solver.solve(load_control, value, label, solution);
     }

@@ -262,6 +262,17 @@ namespace cycloid
       write_count(active.size());
       for (const auto d : active)
         write_count(d);
+      // CG's starts: without them the resumed run's solves would differ
+      // from the uninterrupted run's at the solver tolerance.
+      write_count(contact.warm_starts().size());
+      for (const contact::WarmStart &w : contact.warm_starts())
+        {
+          write(w.stiffness);
+          write(w.mass);
+          for (const Vector *x : {&w.u0, &w.u1})
+            for (const auto i : owned)
+              write((*x)[i]);
+        }
     }
 
 
@@ -333,6 +344,29 @@ namespace cycloid
       const auto                                n_active = read_count();
       for (std::uint64_t k = 0; k < n_active; ++k)
         active.insert(read_count());
+      AssertThrow(in, dealii::ExcMessage("checkpoint: the file is truncated."));
+      auto &starts = contact.warm_starts();
+      starts.clear();
+      // (A checkpoint of an older version ends here: no starts.)
+      const auto n_starts = in.peek() == std::char_traits<char>::eof() ?
+                              std::uint64_t(0) :
+                              read_count();
+      for (std::uint64_t k = 0; k < n_starts; ++k)
+        {
+          contact::WarmStart w;
+          w.stiffness = read();
+          w.mass      = read();
+          for (Vector *x : {&w.u0, &w.u1})
+            {
+              Vector o(owned, comm);
+              for (const auto i : owned)
+                o[i] = read();
+              o.compress(dealii::VectorOperation::insert);
+              x->reinit(owned, el.locally_relevant_dofs(), comm);
+              *x = o;
+            }
+          starts.push_back(std::move(w));
+        }
       AssertThrow(in, dealii::ExcMessage("checkpoint: the file is truncated."));
       contact.initialise_active_set([&](const contact::SlaveNode<dim> &s) {
         return active.count(s.dofs[0]) > 0;

@@ -452,11 +452,20 @@ namespace cycloid
         rhs = 0;
       // Effective operator s_K K + s_M M and history load M w_M + K w_K.
       AssemblyScratch<dim> scratch(*map, fe, dynamic);
+      // A mass operator (a projection) needs no K: it would be scaled by 0.
+      const bool without_k =
+        dynamic.stiffness == 0. && !scratch.has_stiffness_load;
       for (const auto &cell : dofs.active_cell_iterators())
         {
           if (!cell->is_locally_owned())
             continue;
-          assemble_local_stiffness<dim>(cell, materials, scratch);
+          if (without_k)
+            {
+              scratch.cell_matrix = 0;
+              scratch.fe_values.reinit(cell);
+            }
+          else
+            assemble_local_stiffness<dim>(cell, materials, scratch);
           cell->get_dof_indices(scratch.indices);
           // The density is looked up only where the operator needs it.
           const double rho = scratch.has_mass || scratch.has_mass_load ?
@@ -517,7 +526,8 @@ namespace cycloid
       const dealii::AffineConstraints<double>     *condense,
       dealii::TrilinosWrappers::MPI::Vector       *condensed,
       const bool                                   effective,
-      const bool                                   with_load) const
+      const bool                                   with_load,
+      const CellList                              *cells) const
     {
       const dealii::QGauss<dim>                    quadrature(fe.degree + 1);
       dealii::FEValues<dim>                        fe_values(*map,
@@ -541,10 +551,13 @@ namespace cycloid
         effective && with_load && dynamic.mass_load.size() > 0;
       const bool load_K =
         effective && with_load && dynamic.stiffness_load.size() > 0;
-      for (const auto &cell : dofs.active_cell_iterators())
+      CellList owned;
+      if (!cells)
+        for (const auto &cell : dofs.active_cell_iterators())
+          if (cell->is_locally_owned())
+            owned.push_back(cell);
+      for (const auto &cell : cells ? *cells : owned)
         {
-          if (!cell->is_locally_owned())
-            continue;
           const auto &m           = materials.at(cell->material_id());
           const auto [lambda, mu] = lame_parameters(m);
           const double rho        = density(cell->material_id());
@@ -602,15 +615,43 @@ namespace cycloid
     dealii::TrilinosWrappers::MPI::Vector
     LinearElasticity<dim>::effective_forces(
       const dealii::TrilinosWrappers::MPI::Vector &u,
-      const bool                                   with_load) const
+      const bool                                   with_load,
+      const CellList                              *cells) const
     {
       dealii::TrilinosWrappers::MPI::Vector f(locally_owned, comm);
-      assemble_internal_forces(u, f, nullptr, nullptr, true, with_load);
+      assemble_internal_forces(u, f, nullptr, nullptr, true, with_load, cells);
       dealii::TrilinosWrappers::MPI::Vector ghosted(locally_owned,
                                                     locally_relevant,
                                                     comm);
       ghosted = f;
       return ghosted;
+    }
+
+
+
+    template <int dim>
+    typename LinearElasticity<dim>::CellList
+    LinearElasticity<dim>::owned_cells_touching(
+      const std::vector<dealii::types::global_dof_index> &wanted) const
+    {
+      std::vector<dealii::types::global_dof_index> sorted(wanted);
+      std::sort(sorted.begin(), sorted.end());
+      CellList                                     cells;
+      std::vector<dealii::types::global_dof_index> indices(
+        fe.n_dofs_per_cell());
+      for (const auto &cell : dofs.active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          cell->get_dof_indices(indices);
+          for (const auto d : indices)
+            if (std::binary_search(sorted.begin(), sorted.end(), d))
+              {
+                cells.push_back(cell);
+                break;
+              }
+        }
+      return cells;
     }
 
 

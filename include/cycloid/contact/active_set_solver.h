@@ -37,6 +37,11 @@ namespace cycloid
       const std::vector<dealii::types::global_dof_index> &fixed;
       /** DoFs moved by beta * g and their g. */
       const std::map<dealii::types::global_dof_index, double> &load;
+      /** Owned cells at the slave and load DoFs: the solver reads nodal
+       * forces there only, so it sums them over these cells (null: all
+       * cells). */
+      const typename elasticity::LinearElasticity<dim>::CellList *force_cells =
+        nullptr;
 
       /** Add the supports of every state to @p c: the fixed DoFs, the load
        * DoFs at beta * g and the ties (DoFs already constrained, e.g. by
@@ -201,6 +206,15 @@ namespace cycloid
       finish(const std::string    &label,
              ContactState         &state,
              ContactSolution<dim> &solution) const;
+
+      /** Start u0 and u1 from @p solution's last state under the same
+       * operator, if there is one. */
+      void
+      warm_start(const ContactSolution<dim> &solution);
+
+      /** Keep u0 and u1 in @p solution as the next state's start. */
+      void
+      keep_start(ContactSolution<dim> &solution) const;
 
       /** Generalised reaction sum_d g_d f_d of the load pattern. */
       double

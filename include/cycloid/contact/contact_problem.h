@@ -231,6 +231,22 @@ namespace cycloid
         return solution.active;
       }
 
+      /** CG's starts for the next states (ActiveSetSolver keeps them;
+       * a checkpoint saves them, so that a resumed run repeats the
+       * uninterrupted one). */
+      std::vector<WarmStart> &
+      warm_starts()
+      {
+        return solution.starts;
+      }
+
+      /** See the other overload. */
+      const std::vector<WarmStart> &
+      warm_starts() const
+      {
+        return solution.starts;
+      }
+
       /** Start the next state from the active set @p active (indices of
        * this mesh's slave nodes, e.g. an earlier active_set()). */
       void
@@ -304,6 +320,10 @@ namespace cycloid
        * the slave nodes were (re)collected. */
       void
       reset_slave_results();
+      /** The owned cells at the slave and load DoFs (the only DoFs whose
+       * forces the solver reads), rebuilt when those DoFs change. */
+      const typename elasticity::LinearElasticity<dim>::CellList &
+      force_cells();
 
       const ContactSettings settings;
       const std::map<dealii::types::material_id, parameters::ElasticMaterial>
@@ -324,6 +344,10 @@ namespace cycloid
       dealii::TimerOutput *timer = nullptr;
       /** pattern_signature() of the fixed pattern. */
       std::vector<dealii::types::global_dof_index> signature;
+      /** The DoFs of force_cells() (sorted; empty: not built on this
+       * mesh) and the cells. */
+      std::vector<dealii::types::global_dof_index>         force_dofs;
+      typename elasticity::LinearElasticity<dim>::CellList cells_at_forces;
     };
   } // namespace contact
 } // namespace cycloid

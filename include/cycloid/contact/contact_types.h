@@ -179,6 +179,26 @@ namespace cycloid
     };
 
     /**
+     * @brief A state's two solutions u0 (gaps, no load) and u1 (unit load)
+     * under one effective operator, kept as CG's start for the next state
+     * under the same operator.
+     *
+     * Why: over the time steps (and load states) of a mesh the operator
+     * stays and the active set moves by a few nodes, so the last state's
+     * u0 and u1 are close to the next ones; from zero, CG must first
+     * build the whole field.
+     */
+    struct WarmStart
+    {
+      /** The operator's factors of K and M (elasticity::DynamicTerms). */
+      double stiffness = 1;
+      /** See stiffness. */
+      double mass = 0;
+      /** The two solutions (ghosted) [mm]. */
+      dealii::TrilinosWrappers::MPI::Vector u0, u1;
+    };
+
+    /**
      * @brief What a load state leaves behind: the active set (also the
      * warm start of the next state) and, per slave node and on every rank,
      * the reaction and gap, plus the displacement.
@@ -195,6 +215,10 @@ namespace cycloid
       std::vector<double> gaps;
       /** Displacement u0 + beta u1 (with ghosts) [mm]. */
       dealii::TrilinosWrappers::MPI::Vector displacement;
+      /** The solutions of the last states under the last two operators
+       * (a transient step and its projection), most recent first; cleared
+       * with the mesh. */
+      std::vector<WarmStart> starts;
     };
   } // namespace contact
 } // namespace cycloid

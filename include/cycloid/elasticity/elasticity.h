@@ -107,6 +107,9 @@ namespace cycloid
     public:
       /** Linear solver (see elasticity::LinearSolver). */
       using Solver = LinearSolver;
+      /** A list of (locally owned, active) cells. */
+      using CellList =
+        std::vector<typename dealii::DoFHandler<dim>::active_cell_iterator>;
 
       /** @p materials maps each material id of the mesh to its material. */
       LinearElasticity(
@@ -249,6 +252,13 @@ namespace cycloid
       void
       set_dynamic_terms(const DynamicTerms &terms);
 
+      /** The effective operator's terms (set_dynamic_terms()). */
+      const DynamicTerms &
+      dynamic_terms() const
+      {
+        return dynamic;
+      }
+
       /** Back to the static operator A = K, b = 0. */
       void
       clear_dynamic_terms()
@@ -258,11 +268,23 @@ namespace cycloid
 
       /**
        * Nodal forces of the effective operator, A u - b (with_load) or A u;
-       * static problems: K u. Ghosted [N, per mm thickness in 2D].
+       * static problems: K u. Ghosted [N, per mm thickness in 2D]. With
+       * @p cells, only their contributions are summed: the entries are
+       * exact at the DoFs whose every cell is in the list (see
+       * owned_cells_touching()) and partial elsewhere.
        */
       dealii::TrilinosWrappers::MPI::Vector
       effective_forces(const dealii::TrilinosWrappers::MPI::Vector &u,
-                       const bool with_load) const;
+                       const bool                                   with_load,
+                       const CellList *cells = nullptr) const;
+
+      /** The locally owned cells that hold at least one of @p dofs (any
+       * order, repeats allowed): with them, effective_forces() is exact
+       * at these DoFs, at the cost of a surface layer instead of the
+       * mesh. */
+      CellList
+      owned_cells_touching(
+        const std::vector<dealii::types::global_dof_index> &dofs) const;
 
       /**
        * Elastic energy u^T K u / 2 and kinetic energy v^T M v / 2 [N mm =
@@ -403,9 +425,9 @@ namespace cycloid
       rigid_body_modes(const bool with_rotations) const;
 
     private:
-      /** f += f_int(u) over the owned cells; with @p condense, also
-       * @p condensed += C^T f_int(u) (constrained entries moved onto their
-       * masters). */
+      /** f += f_int(u) over the owned cells (those of @p cells if given);
+       * with @p condense, also @p condensed += C^T f_int(u) (constrained
+       * entries moved onto their masters). */
       void
       assemble_internal_forces(
         const dealii::TrilinosWrappers::MPI::Vector &u,
@@ -413,7 +435,8 @@ namespace cycloid
         const dealii::AffineConstraints<double>     *condense,
         dealii::TrilinosWrappers::MPI::Vector       *condensed,
         const bool                                   effective = false,
-        const bool                                   with_load = false) const;
+        const bool                                   with_load = false,
+        const CellList                              *cells     = nullptr) const;
 
       /** Density of body @p m in t/mm^3 (the consistent unit with N, mm, s). */
       double
