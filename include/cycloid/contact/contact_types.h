@@ -194,8 +194,11 @@ namespace cycloid
       double stiffness = 1;
       /** See stiffness. */
       double mass = 0;
-      /** The two solutions (ghosted) [mm]. */
-      dealii::TrilinosWrappers::MPI::Vector u0, u1;
+      /** The solution for the first right-hand side (ghosted) [mm]. */
+      dealii::TrilinosWrappers::MPI::Vector u0;
+      /** The solution for the second right-hand side, the torque
+       * superposition's (ghosted) [mm]. */
+      dealii::TrilinosWrappers::MPI::Vector u1;
     };
 
     /**
