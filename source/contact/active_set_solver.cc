@@ -1,5 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/base/utilities.h>
+
 #include <cycloid/contact/active_set_solver.h>
 
 #include <algorithm>
@@ -9,6 +11,8 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+
+#include <malloc.h>
 
 namespace cycloid
 {
@@ -29,6 +33,38 @@ namespace cycloid
       private:
         std::optional<dealii::TimerOutput::Scope> scope;
       };
+
+
+
+      /** This process's resident memory now [MB] (debug output). */
+      double
+      resident_MB()
+      {
+        dealii::Utilities::System::MemoryStats stats;
+        dealii::Utilities::System::get_memory_stats(stats);
+        return stats.VmRSS / 1024.;
+      }
+
+
+
+      /** Heap in use by this process [MB] (debug output). */
+      double
+      in_use_MB()
+      {
+        const auto m = mallinfo2();
+        return (m.uordblks + m.hblkhd) / 1048576.;
+      }
+
+
+
+      /** This process's peak resident memory [MB] (debug output). */
+      double
+      peak_MB()
+      {
+        dealii::Utilities::System::MemoryStats stats;
+        dealii::Utilities::System::get_memory_stats(stats);
+        return stats.VmHWM / 1024.;
+      }
     } // namespace
 
 
@@ -85,8 +121,10 @@ namespace cycloid
               ++state.iterations;
             }
           const double t_assemble = clock.wall_time();
+          const double m_assemble = resident_MB();
           setup_preconditioner();
           const double t_preconditioner = clock.wall_time();
+          const double m_preconditioner = resident_MB();
           // A cycle's union is solved 100 times tighter: the nodes that
           // came and went carry forces at the level of CG's residual.
           solve_linear_systems((tight ? settings.solver_tolerance :
@@ -103,6 +141,10 @@ namespace cycloid
                       << " s, solves " << clock.wall_time() - t_preconditioner
                       << " s / " << n0 << " + " << n1 << " it, "
                       << problem.n_preconditioner_builds() - builds << " builds"
+                      << "; rank 0 resident after assembly " << m_assemble
+                      << " MB, preconditioner " << m_preconditioner
+                      << " MB, solves " << resident_MB() << " MB, heap in use "
+                      << in_use_MB() << " MB, peak " << peak_MB() << " MB"
                       << std::endl;
 
           std::set<unsigned int> next;

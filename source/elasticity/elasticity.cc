@@ -61,10 +61,10 @@ namespace cycloid
       hanging_all.clear();
       dealii::DoFTools::make_hanging_node_constraints(dofs, hanging_all);
       hanging_all.close();
-      ready         = Ready::none;
+      // The hierarchy refers to the modes: both go.
+      release_matrix();
       pattern_fixed = false;
-      many_solver.reset();
-      many_problem.reset();
+      null_space.reset();
     }
 
 
@@ -105,12 +105,34 @@ namespace cycloid
     void
     LinearElasticity<dim>::build_exact_pattern()
     {
+      release_matrix();
       dealii::DynamicSparsityPattern dsp(locally_relevant);
       dealii::DoFTools::make_sparsity_pattern(dofs,
                                               dsp,
                                               constraint_sets[0],
                                               false);
       reinit_matrix(dsp);
+    }
+
+
+
+    template <int dim>
+    void
+    LinearElasticity<dim>::release_matrix()
+    {
+      // The matrix is about to be rebuilt on a new pattern: without this,
+      // the old matrix and its AMG hierarchy would still be held while the
+      // new pattern and matrix are allocated, and the peak of the run grows
+      // by a third over its first active-set iteration (3D, 290 k DoFs,
+      // doc/solver-reuse.md#memory).
+      amg.clear();
+      jacobi.clear();
+      direct.reset();
+      many_solver.reset();
+      many_problem.reset();
+      system_matrix.clear();
+      ready        = Ready::none;
+      jacobi_ready = false;
     }
 
 
@@ -151,6 +173,7 @@ namespace cycloid
     LinearElasticity<dim>::set_pattern_superset(
       const std::function<void(dealii::AffineConstraints<double> &)> &superset)
     {
+      release_matrix();
       update_relevant_dofs();
       // Unclosed, so that a chain of constraints stays visible: a set that
       // leaves a link of the chain unconstrained condenses onto that link.
@@ -897,7 +920,13 @@ namespace cycloid
       Teuchos::ParameterList              parameters;
       std::unique_ptr<Epetra_MultiVector> unused;
       data.set_parameters(parameters, unused, system_matrix);
-      null_space = rigid_body_modes(solver == Solver::cg_amg);
+      // The modes depend on the DoFs only: built once per distribution
+      // (they walk the support points of the whole mesh).
+      const unsigned int n_modes =
+        solver == Solver::cg_amg ? dim * (dim + 1) / 2 : dim;
+      if (!null_space ||
+          static_cast<unsigned int>(null_space->NumVectors()) != n_modes)
+        null_space = rigid_body_modes(solver == Solver::cg_amg);
       // ML aggregates nodes, not single DoFs, when told that the rows come
       // in blocks of dim (one support point's components). Measured
       // (doc/solver-reuse.md): on a 3D two-disc scene of 290 k DoFs CG
@@ -909,6 +938,8 @@ namespace cycloid
       parameters.set("null space: type", "pre-computed");
       parameters.set("null space: dimension", null_space->NumVectors());
       parameters.set("null space: vectors", null_space->Values());
+      // A stale hierarchy goes before the new one is built (peak memory).
+      amg.clear();
       amg.initialize(system_matrix, parameters);
       ready                = Ready::amg;
       rebuild_amg          = false;

@@ -70,7 +70,8 @@ namespace cycloid
      * active-set update" and, once per state, "contact: residual and
      * reactions". Every stage is collective, so the sections are entered
      * on all ranks alike. The environment variable CYCLOID_DEBUG prints
-     * each iteration's times and set sizes to stderr.
+     * each iteration's times, set sizes and rank 0's memory (resident
+     * after each stage, heap in use, peak) to stderr.
      *
      * One object per load state: it holds the state's solutions, which
      * warm-start CG in the next iteration.

@@ -461,6 +461,8 @@ namespace cycloid
       std::vector<dealii::TrilinosWrappers::MPI::Vector> rhs_sets;
       dealii::TrilinosWrappers::MPI::Vector locally_relevant_solution;
 
+      /** Rigid-body modes of the current DoFs (AMG's near-null space;
+       * null until the first AMG set-up after distribute_dofs()). */
       std::unique_ptr<Epetra_MultiVector>       null_space;
       dealii::TrilinosWrappers::PreconditionAMG amg;
       /** Which preconditioner (if any) matches the current matrix:
@@ -492,6 +494,11 @@ namespace cycloid
       /** The locally relevant DoFs with the extra ones. */
       void
       update_relevant_dofs();
+
+      /** Free the matrix and every preconditioner built on it (before a
+       * new pattern is built, so that the two never coexist). */
+      void
+      release_matrix();
 
       /** Reinitialise the matrix with the pattern of constraint set 0. */
       void
