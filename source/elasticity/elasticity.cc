@@ -124,7 +124,7 @@ namespace cycloid
       // the old matrix and its AMG hierarchy would still be held while the
       // new pattern and matrix are allocated, and the peak of the run grows
       // by a third over its first active-set iteration (3D, 290 k DoFs,
-      // doc/solver-reuse.md#memory).
+      // doc/solver-reuse.md, "Memory").
       amg.clear();
       jacobi.clear();
       direct.reset();
