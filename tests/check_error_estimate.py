@@ -24,6 +24,11 @@ FILE.prm is the new-user case of issue #15: the 2D slab, modified profile,
   true error plus the band. (At Contact refinements 2 half the change from
   level 0 to 1 dominates the estimate, 10-300 times the error: measured in
   doc/error-estimate.md, not checked);
+* with Error estimate = false at Contact refinements 1 and 3: the
+  contact-resolution indicator (C / n^2, n the nodes across the Hertz width
+  of the most loaded pin) covers the true pin-force error, n follows the
+  node spacing (a quarter from level 1 to 3), and it flags level 1 but
+  not level 3;
 * with Mesh/Target accuracy 0.01 from Contact refinements 0: it reports
   the target reached, and lands within 1 % of the reference in K_secant,
   K_tangent and every pin force (of the largest).
@@ -37,6 +42,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checker import check, rows, verdict  # noqa: E402
 
 BRACKET = 10.0
+RESOLUTION_CONSTANT = 0.25  # results::resolution_constant
 
 
 def run(exe, text, work, name, mesh):
@@ -70,6 +76,37 @@ def errors(a, b):
 def estimates(s):
     return {"K_secant": float(s["K_secant_error"]), "K_tangent": float(s["K_tangent_error"]),
             "pin_forces": float(s["max_pin_force_error"])}
+
+
+def check_resolution(args, text, ref, band):
+    """Without the estimate, the contact-resolution indicator: n halves
+    with the spacing (two levels: the spacing at the most loaded pin / 4),
+    the indicator covers the true pin-force error, and it flags
+    Contact refinements 1 (n about 1.3, indicator 14 %) but not 3 (n about
+    4.5, indicator 1.2 %)."""
+    got = {}
+    for cr in (1, 3):
+        s, p, log = run(args.exe, text, args.work, "resolution-cr%d" % cr,
+                        {"Contact refinements": cr, "Target accuracy": 0, "Error estimate": "false"})
+        pins = rows(os.path.join(args.work, "resolution-cr%d" % cr, "pin_forces.csv"))
+        most = max(pins, key=lambda r: float(r["Fn_N"]))
+        n, indicator = float(s["hertz_nodes"]), float(s["resolution_error"])
+        spacing = 2 * float(most["hertz_halfwidth_um"]) / float(most["hertz_nodes"])
+        true = errors((s, p), ref)["pin_forces"]
+        got[cr] = (s, log, spacing)
+        print("no estimate, cr%d: %.2f nodes across the Hertz width (spacing %.1f um), indicator %.3g %%, "
+              "true pin-force error %.3g %%" % (cr, n, spacing, 100 * indicator, 100 * true))
+        check(n == float(most["hertz_nodes"]), "cr%d: stiffness.csv hertz_nodes is not the most loaded pin's" % cr)
+        check(abs(indicator * n * n / RESOLUTION_CONSTANT - 1) < 1e-9,
+              "cr%d: resolution_error %.6g is not C / n^2" % (cr, indicator))
+        check(true <= indicator + band["pin_forces"],
+              "cr%d: pin-force error %.3g above the resolution indicator %.3g" % (cr, true, indicator))
+    ratio = got[1][2] / got[3][2]
+    check(3.6 <= ratio <= 4.4, "node spacing at cr1 / cr3 is %.2f, not 4" % ratio)
+    check(got[1][0]["mesh_warning"] == "1" and "the contact resolution exceeds" in got[1][1],
+          "cr1 without the estimate: not flagged by its resolution")
+    check(got[3][0]["mesh_warning"] == "0" and "WARNING" not in got[3][1],
+          "cr3 without the estimate: flagged by its resolution")
 
 
 def main():
@@ -108,6 +145,8 @@ def main():
         if cr == 3:
             check(s["mesh_warning"] == "0", "cr3: flagged (estimates %s)" % est)
             check("WARNING" not in log, "cr3: console warning")
+
+    check_resolution(args, text, ref[:2], band)
 
     sd, pd, logd = run(args.exe, text, args.work, "default", {})
     check("Target accuracy = auto: 0.02" in logd, "default run: the automatic target is not announced")

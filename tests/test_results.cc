@@ -5,10 +5,13 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <cycloid/results/error_estimate.h>
 #include <cycloid/results/state_buffer.h>
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -65,6 +68,7 @@ namespace
         p.max_shear_depth   = 0.16 * x;
         p.active_nodes      = 17 + j;
         p.fn_error          = 0.17 * x;
+        p.hertz_nodes       = 0.18 * x;
         s.pins.push_back(p);
       }
     return s;
@@ -81,7 +85,7 @@ TEST(StateBuffer, StructsHaveTheFieldsThePackingKnows)
   EXPECT_EQ(sizeof(results::PinState),
             2 * sizeof(unsigned int) + 16 * sizeof(double) +
               2 * sizeof(unsigned int) /* active_nodes + padding */ +
-              sizeof(double));
+              2 * sizeof(double) /* fn_error, hertz_nodes */);
   EXPECT_EQ(sizeof(results::ErrorEstimate),
             3 * sizeof(double) +
               2 * sizeof(unsigned int) /* contact_level + padding */ +
@@ -104,7 +108,7 @@ TEST(StateBuffer, EveryFieldComesBackExactly)
     {
       const results::StageState a      = distinct_state(n_pins);
       const std::vector<double> buffer = results::StateBuffer::pack(a);
-      EXPECT_EQ(buffer.size(), 21u + 20u * n_pins);
+      EXPECT_EQ(buffer.size(), 21u + 21u * n_pins);
       const results::StageState b = results::StateBuffer::unpack(buffer);
       EXPECT_EQ(b.step, a.step);
       EXPECT_EQ(b.crank, a.crank);
@@ -149,6 +153,7 @@ TEST(StateBuffer, EveryFieldComesBackExactly)
           EXPECT_EQ(q.max_shear_depth, p.max_shear_depth);
           EXPECT_EQ(q.active_nodes, p.active_nodes);
           EXPECT_EQ(q.fn_error, p.fn_error);
+          EXPECT_EQ(q.hertz_nodes, p.hertz_nodes);
         }
       // The derived figures follow.
       EXPECT_EQ(b.pins_in_contact(), a.pins_in_contact());
@@ -165,4 +170,34 @@ TEST(StateBuffer, BufferOfTheWrongSizeIsRefused)
   EXPECT_THROW(results::StateBuffer::unpack(buffer), dealii::ExceptionBase);
   EXPECT_THROW(results::StateBuffer::unpack(buffer.data(), 5),
                dealii::ExceptionBase);
+}
+
+
+
+TEST(ResolutionIndicator, ReadsTheMostLoadedPin)
+{
+  // C / n of the most loaded pin, whatever the other pins' resolution: a
+  // lightly loaded pin's narrow Hertz zone is resolved by fewer nodes,
+  // but its error relative to the largest force is smaller
+  // (doc/error-estimate.md, "The resolution indicator").
+  results::StageState s;
+  s.pins.resize(3);
+  s.pins[0].fn          = 100.;
+  s.pins[0].hertz_nodes = 0.5;
+  s.pins[1].fn          = 900.;
+  s.pins[1].hertz_nodes = 3.;
+  s.pins[2].fn          = 0.;
+  EXPECT_DOUBLE_EQ(results::resolution_error(s),
+                   results::resolution_constant / 9.);
+  // Halving the spacing doubles n and quarters the indicator (second
+  // order).
+  s.pins[1].hertz_nodes = 6.;
+  EXPECT_DOUBLE_EQ(results::resolution_error(s),
+                   results::resolution_constant / 36.);
+  // No contact mesh (analytic, reduced) or no force: no indicator.
+  s.pins[1].hertz_nodes = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(results::resolution_error(s)));
+  results::StageState unloaded;
+  unloaded.pins.resize(2);
+  EXPECT_TRUE(std::isnan(results::resolution_error(unloaded)));
 }

@@ -91,9 +91,11 @@ namespace cycloid
           if (solves && e.mode == mesh::ErrorControl::Mode::automatic)
             notes.push_back(
               "Mesh/Error estimate = auto: off in 3D, so the states carry no "
-              "error estimate and no mesh warning (the coarser levels it "
-              "solves cost nearly as much as the state; Error estimate = "
-              "true or a Target accuracy turns it on)");
+              "error estimate from nested levels (they cost nearly as much "
+              "as the state; Error estimate = true or a Target accuracy "
+              "turns it on); the mesh warning then rests on the contact "
+              "resolution, nodes across the Hertz width of the most loaded "
+              "pin (stiffness.csv hertz_nodes, resolution_error)");
           e.mode = mesh::ErrorControl::Mode::off;
           return;
         }

@@ -21,6 +21,18 @@ namespace cycloid
   {
     namespace u = results::units;
 
+    namespace
+    {
+      /** @p x as a percentage with two significant digits. */
+      std::string
+      pct(const double x)
+      {
+        std::ostringstream out;
+        out << std::setprecision(2) << 100. * x << " %";
+        return out.str();
+      }
+    } // namespace
+
     std::string
     Report::stiffness_header()
     {
@@ -31,7 +43,7 @@ namespace cycloid
              "max_pin_force_N,linear_iterations,peak_memory_MB,"
              "transmission_error_arcsec,preconditioner_setups,"
              "K_secant_error,K_tangent_error,max_pin_force_error,"
-             "mesh_warning";
+             "mesh_warning,hertz_nodes,resolution_error";
     }
 
 
@@ -44,7 +56,7 @@ namespace cycloid
              "contact_y_mm,contact_halfwidth_um,hertz_halfwidth_um,"
              "max_contact_pressure_MPa,hertz_pressure_MPa,"
              "max_shear_stress_MPa,max_shear_depth_um,Fn_error_N,"
-             "active_nodes";
+             "active_nodes,hertz_nodes";
     }
 
 
@@ -198,7 +210,8 @@ namespace cycloid
                 << s.rotation * u::arcsec_per_rad + 0. << ','
                 << s.preconditioner_setups << ',' << s.error.k_secant << ','
                 << s.error.k_tangent << ',' << s.error.max_pin_force << ','
-                << (flag(s) ? 1 : 0) << '\n';
+                << (flag(s) ? 1 : 0) << ',' << max_pin_hertz_nodes(s) << ','
+                << results::resolution_error(s) << '\n';
       ++n_written;
       if (flag(s))
         ++n_flagged;
@@ -214,7 +227,8 @@ namespace cycloid
                    << p.hertz_halfwidth * u::um_per_mm << ',' << p.max_pressure
                    << ',' << p.hertz_pressure << ',' << p.max_shear_stress
                    << ',' << p.max_shear_depth * u::um_per_mm << ','
-                   << p.fn_error << ',' << p.active_nodes << '\n';
+                   << p.fn_error << ',' << p.active_nodes << ','
+                   << p.hertz_nodes << '\n';
       stiffness.flush();
       pin_forces.flush();
 
@@ -271,12 +285,7 @@ namespace cycloid
                 << s.k_tangent << " N m/rad ("
                 << s.k_tangent * u::rad_per_arcmin << " N m/arcmin), pins "
                 << s.pins_in_contact() << ", iterations " << s.iterations;
-      const auto most = std::max_element(s.pins.begin(),
-                                         s.pins.end(),
-                                         [](const results::PinState &a,
-                                            const results::PinState &b) {
-                                           return a.fn < b.fn;
-                                         });
+      const auto most = s.most_loaded_pin();
       if (most != s.pins.end() && most->fn > 0)
         std::cout << ", max Fn " << most->fn << " N (disc " << most->disc
                   << " pin " << most->pin << ", p " << most->max_pressure
@@ -299,10 +308,25 @@ namespace cycloid
     bool
     Report::flag(const results::StageState &s) const
     {
-      return options.warning_threshold > 0 &&
-             (!s.error.failure.empty() ||
-              (s.error.available() &&
-               s.error.largest() > options.warning_threshold));
+      if (options.warning_threshold <= 0)
+        return false;
+      if (!s.error.failure.empty())
+        return true;
+      // The estimate from nested levels, where there is one, is the
+      // better figure; the resolution indicator stands in where not.
+      if (s.error.available())
+        return s.error.largest() > options.warning_threshold;
+      return results::resolution_error(s) > options.warning_threshold;
+    }
+
+
+
+    double
+    Report::max_pin_hertz_nodes(const results::StageState &s)
+    {
+      const auto most = s.most_loaded_pin();
+      return most == s.pins.end() ? std::numeric_limits<double>::quiet_NaN() :
+                                    most->hertz_nodes;
     }
 
 
@@ -316,12 +340,7 @@ namespace cycloid
                   << "); the mesh is near the coarsest the contact solver "
                   << "resolves. " << options.refine_advice << std::endl;
       if (!s.error.available())
-        return;
-      const auto pct = [](const double x) {
-        std::ostringstream out;
-        out << std::setprecision(2) << 100. * x << " %";
-        return out.str();
-      };
+        return print_resolution(s);
       std::cout << "    estimated error (contact levels "
                 << s.error.contact_level - 2 << " to " << s.error.contact_level
                 << "): K_secant " << pct(s.error.k_secant) << ", K_tangent "
@@ -336,6 +355,38 @@ namespace cycloid
       for (unsigned int i = 0; i < pins.size(); ++i)
         std::cout << (i == 0 ? "; pin forces off by up to: " : ", ") << pins[i];
       std::cout << ". " << options.refine_advice << std::endl;
+    }
+
+
+
+    void
+    Report::print_resolution(const results::StageState &s) const
+    {
+      const double e = results::resolution_error(s);
+      if (!(e > 0))
+        return;
+      const auto   most    = s.most_loaded_pin();
+      const double n       = most->hertz_nodes;
+      const double spacing = 2. * most->hertz_halfwidth / n;
+      std::cout << "    contact resolution: " << std::setprecision(2) << n
+                << " node(s) across the Hertz width of the most loaded pin ("
+                << std::lround(2. * most->hertz_halfwidth * u::um_per_mm)
+                << " um, nodes " << std::lround(spacing * u::um_per_mm)
+                << " um apart): pin forces to about " << pct(e)
+                << " of the largest (no estimate from nested levels)"
+                << std::setprecision(6) << std::endl;
+      if (!flag(s))
+        return;
+      // Each contact refinement halves the spacing: n doubles and the
+      // indicator falls by 4.
+      const int levels = static_cast<int>(
+        std::ceil(std::log(e / options.warning_threshold) / std::log(4.)));
+      std::cout << "    WARNING: the contact resolution exceeds Mesh/Warning "
+                << "threshold (" << pct(options.warning_threshold)
+                << "): this state's mesh does not resolve the contact of "
+                << "disc " << most->disc << " pin " << most->pin << " (about "
+                << levels << " more contact refinement level(s) would). "
+                << options.refine_advice << std::endl;
     }
 
 
@@ -553,8 +604,9 @@ namespace cycloid
         std::cout << "  WARNING: " << n_flagged << " of " << n_written
                   << " state(s) exceed Mesh/Warning threshold ("
                   << options.warning_threshold
-                  << ") in their error estimate (stiffness.csv mesh_warning "
-                  << "= 1). " << options.refine_advice << std::endl;
+                  << ") in their error estimate or, without one, their "
+                  << "contact resolution (stiffness.csv mesh_warning = 1). "
+                  << options.refine_advice << std::endl;
       std::cout << "  results in " << options.directory << "/: " << written
                 << std::endl;
     }

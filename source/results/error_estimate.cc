@@ -58,6 +58,18 @@ namespace cycloid
 
 
 
+    double
+    resolution_error(const StageState &state)
+    {
+      const auto most = state.most_loaded_pin();
+      if (most == state.pins.end() || !(most->fn > 0) ||
+          !(most->hertz_nodes > 0))
+        return std::numeric_limits<double>::quiet_NaN();
+      return resolution_constant / (most->hertz_nodes * most->hertz_nodes);
+    }
+
+
+
     std::vector<std::string>
     unresolved_pins(const StageState &state, const double threshold)
     {

@@ -63,6 +63,7 @@ namespace cycloid
         f(p.max_shear_depth);
         f(p.active_nodes);
         f(p.fn_error);
+        f(p.hertz_nodes);
       }
 
       /** Number of doubles of the fields of a state and of a pin. */

@@ -778,15 +778,21 @@ namespace cycloid
             p.phase         = pc.phase;
             p.contact_point = pc.contact_point;
             p.approach      = s.rotation * pc.arm - pc.clearance;
-            if (p.fn > 0)
-              p.contact_halfwidth =
-                contact_halfwidth(d, pc.pin, pc.contact_point);
             p.hertz_halfwidth =
               analytic::stage_hertz_half_width(p.fn,
                                                pc.curvature_radius,
                                                settings.geometry,
                                                settings.material,
                                                settings.scene);
+            if (p.fn > 0)
+              {
+                p.contact_halfwidth =
+                  contact_halfwidth(d, pc.pin, pc.contact_point);
+                const double h =
+                  flank_node_spacing(d, pc.pin, pc.contact_point);
+                if (h > 0)
+                  p.hertz_nodes = 2. * p.hertz_halfwidth / h;
+              }
             analytic::set_hertz_stresses(p,
                                          settings.geometry.tooth_width,
                                          settings.material.disc.poissons_ratio);
@@ -848,6 +854,32 @@ namespace cycloid
 
 
     template <int dim>
+    std::vector<std::pair<double, bool>>
+    StageScene<dim>::pair_node_angles(
+      const unsigned int      d,
+      const unsigned int      j,
+      const dealii::Point<2> &contact_point) const
+    {
+      const auto            &slaves = contact->slave_nodes();
+      const auto            &active = contact->active_set();
+      const dealii::Point<2> c      = geo.pin_centre(j);
+      const double           a0 =
+        std::atan2(contact_point[1] - c[1], contact_point[0] - c[0]);
+      std::vector<std::pair<double, bool>> angles;
+      for (unsigned int i = 0; i < slaves.size(); ++i)
+        if (slaves[i].body == d && slaves[i].cylinder == j)
+          angles.emplace_back(
+            std::remainder(std::atan2(slaves[i].position[1] - c[1],
+                                      slaves[i].position[0] - c[0]) -
+                             a0,
+                           2. * u::pi),
+            active.count(i) > 0);
+      return angles;
+    }
+
+
+
+    template <int dim>
     double
     StageScene<dim>::contact_halfwidth(
       const unsigned int      d,
@@ -856,36 +888,60 @@ namespace cycloid
     {
       // Half the arc between the outermost active nodes of this pair, plus
       // half a node spacing on each side.
-      const auto            &slaves = contact->slave_nodes();
-      const dealii::Point<2> c      = geo.pin_centre(j);
-      const double           a0 =
-        std::atan2(contact_point[1] - c[1], contact_point[0] - c[0]);
-      const auto angle = [&](const contact::SlaveNode<dim> &s) {
-        return std::remainder(std::atan2(s.position[1] - c[1],
-                                         s.position[0] - c[0]) -
-                                a0,
-                              2. * u::pi);
-      };
-      double lo = 1e300, hi = -1e300, spacing = 1e300;
-      for (const unsigned int i : contact->active_set())
-        if (slaves[i].body == d && slaves[i].cylinder == j)
+      const auto angles = pair_node_angles(d, j, contact_point);
+      double     lo = 1e300, hi = -1e300, spacing = 1e300;
+      for (const auto &[a, is_active] : angles)
+        if (is_active)
           {
-            lo = std::min(lo, angle(slaves[i]));
-            hi = std::max(hi, angle(slaves[i]));
+            lo = std::min(lo, a);
+            hi = std::max(hi, a);
           }
       if (hi < lo)
         return 0.;
-      for (const auto &s : slaves)
-        if (s.body == d && s.cylinder == j)
-          {
-            const double a = angle(s);
-            if (a > hi + 1e-12 || a < lo - 1e-12)
-              spacing =
-                std::min(spacing, std::min(std::abs(a - hi), std::abs(a - lo)));
-          }
+      for (const auto &[a, is_active] : angles)
+        if (a > hi + 1e-12 || a < lo - 1e-12)
+          spacing =
+            std::min(spacing, std::min(std::abs(a - hi), std::abs(a - lo)));
       if (spacing > 1e200)
         spacing = 0;
       return settings.geometry.pin_radius * (0.5 * (hi - lo) + 0.5 * spacing);
+    }
+
+
+
+    template <int dim>
+    double
+    StageScene<dim>::flank_node_spacing(
+      const unsigned int      d,
+      const unsigned int      j,
+      const dealii::Point<2> &contact_point) const
+    {
+      // The distinct angles (3D: the axial nodes of a flank line share
+      // one), sorted; the contact point lies at angle 0.
+      std::vector<double> a;
+      for (const auto &[angle, is_active] :
+           pair_node_angles(d, j, contact_point))
+        a.push_back(angle);
+      std::sort(a.begin(), a.end());
+      a.erase(std::unique(a.begin(),
+                          a.end(),
+                          [](const double x, const double y) {
+                            return std::abs(x - y) < 1e-9;
+                          }),
+              a.end());
+      if (a.size() < 2)
+        return 0.;
+      const auto nearest = std::min_element(a.begin(),
+                                            a.end(),
+                                            [](const double x, const double y) {
+                                              return std::abs(x) < std::abs(y);
+                                            });
+      double     gap     = 1e300;
+      if (nearest != a.begin())
+        gap = std::min(gap, *nearest - *std::prev(nearest));
+      if (std::next(nearest) != a.end())
+        gap = std::min(gap, *std::next(nearest) - *nearest);
+      return settings.geometry.pin_radius * gap;
     }
 
 

@@ -205,13 +205,21 @@ namespace cycloid
         double            torque = 0;
         results::PinState pin;
       };
-      /** Whether @p state's error estimate exceeds the warning
-       * threshold. */
+      /** Whether @p state exceeds the warning threshold: its error
+       * estimate, or, for a state without one, its resolution indicator
+       * (results::resolution_error()); a failed estimate always. */
       bool
       flag(const results::StageState &state) const;
+      /** The hertz_nodes of @p state's most loaded pin (NaN: none). */
+      static double
+      max_pin_hertz_nodes(const results::StageState &state);
       /** Print @p state's error estimate, and its warning if flagged. */
       void
       print_estimate(const results::StageState &state) const;
+      /** For a state without an estimate: print its contact resolution,
+       * and its warning if flagged. */
+      void
+      print_resolution(const results::StageState &state) const;
       /** The noise figures of series @p i (sweeps). */
       SweepNoise
       noise(const unsigned int i) const;

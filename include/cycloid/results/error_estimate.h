@@ -34,6 +34,32 @@ namespace cycloid
     constexpr double previous_change_weight = 0.5;
 
     /**
+     * The constant C of the resolution indicator: a state whose most
+     * loaded pin has n contact nodes across its Hertz width
+     * (PinState::hertz_nodes) has pin forces off by at most about C / n^2
+     * of the largest. Second order in the node spacing, as measured:
+     * fitted as the largest error n^2 over 20 2D runs (four scenes at
+     * Contact refinements 0 to 4, 0.05 to 0.24), and checked on nine 3D
+     * runs it was not fitted to (at most 0.19)
+     * (doc/error-estimate.md, "The resolution indicator").
+     */
+    constexpr double resolution_constant = 0.25;
+
+    /**
+     * The resolution indicator of @p state: resolution_constant / n^2,
+     * n the hertz_nodes of its most loaded pin, as a fraction of the
+     * largest pin force. A pin's Hertz half-width grows as the square
+     * root of its force, so the figure relative to the largest force is
+     * largest at the most loaded pin. NaN where the most loaded pin has
+     * no hertz_nodes (models without a contact mesh, states without
+     * force). An a-priori figure from one solve, for the states that
+     * carry no estimate from nested levels (3D by default, transient
+     * steps, Error estimate = false).
+     */
+    double
+    resolution_error(const StageState &state);
+
+    /**
      * The pins of @p state whose force estimate exceeds @p threshold of
      * its largest pin force, as "disc d pin j (x %)" items.
      */

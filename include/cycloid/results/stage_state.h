@@ -97,6 +97,11 @@ namespace cycloid
       /** Estimated error of fn, from the change against the next coarser
        * contact level (FE with an error estimate; NaN otherwise) [N]. */
       double fn_error = std::numeric_limits<double>::quiet_NaN();
+      /** Contact nodes across the Hertz width: 2 hertz_halfwidth over the
+       * slave nodes' spacing along the flank at the contact point (FE
+       * states of a loaded pin; NaN otherwise). The pin forces' error
+       * falls as its square (results::resolution_error()) [-]. */
+      double hertz_nodes = std::numeric_limits<double>::quiet_NaN();
     };
 
     /**
@@ -220,6 +225,18 @@ namespace cycloid
         for (const PinState &p : pins)
           f = std::max(f, p.fn);
         return f;
+      }
+
+      /** The most loaded pin (the first of equals); pins.end() if the
+       * state has no pins. */
+      std::vector<PinState>::const_iterator
+      most_loaded_pin() const
+      {
+        return std::max_element(pins.begin(),
+                                pins.end(),
+                                [](const PinState &a, const PinState &b) {
+                                  return a.fn < b.fn;
+                                });
       }
     };
   } // namespace results

@@ -333,6 +333,22 @@ namespace cycloid
       contact_halfwidth(const unsigned int      d,
                         const unsigned int      j,
                         const dealii::Point<2> &contact_point) const;
+      /** Angle about pin @p j's centre of each slave node of disc @p d
+       * that faces it, from the unloaded contact point @p contact_point
+       * (in [-pi, pi]), with the active set's flag; in 3D one entry per
+       * node, so an angle repeats once per axial node. */
+      std::vector<std::pair<double, bool>>
+      pair_node_angles(const unsigned int      d,
+                       const unsigned int      j,
+                       const dealii::Point<2> &contact_point) const;
+      /** Spacing of the slave nodes of disc @p d along the flank at its
+       * unloaded contact point with pin @p j: the smaller gap between the
+       * node nearest the point and its neighbours, as an arc on the pin
+       * [mm]; 0 if the pair has fewer than two nodes. */
+      double
+      flank_node_spacing(const unsigned int      d,
+                         const unsigned int      j,
+                         const dealii::Point<2> &contact_point) const;
 
       const StageSettings             settings;
       const MPI_Comm                  comm;
