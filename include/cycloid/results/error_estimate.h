@@ -39,9 +39,10 @@ namespace cycloid
      * (PinState::hertz_nodes) has pin forces off by at most about C / n^2
      * of the largest. Second order in the node spacing, as measured:
      * fitted as the largest error n^2 over 20 2D runs (four scenes at
-     * Contact refinements 0 to 4, 0.05 to 0.24), and checked on nine 3D
-     * runs it was not fitted to (at most 0.19)
-     * (doc/error-estimate.md, "The resolution indicator").
+     * Contact refinements 0 to 4, 0.04 to 0.24), and checked on 14 runs
+     * it was not fitted to: a 2D reducer of other proportions (zp 30, at
+     * most 0.12) and nine 3D runs (at most 0.19) (doc/error-estimate.md,
+     * "The resolution indicator").
      */
     constexpr double resolution_constant = 0.25;
 
