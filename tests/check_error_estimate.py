@@ -28,13 +28,15 @@ FILE.prm is the new-user case of issue #15: the 2D slab, modified profile,
   contact-resolution indicator (C / n^2, n the nodes across the Hertz width
   of the most loaded pin) covers the true pin-force error, n follows the
   node spacing (a quarter from level 1 to 3), and it flags level 1 but
-  not level 3;
+  not level 3; the n announced before the solve for the analytical
+  model's most loaded pin is the solved n of that pin at that force;
 * with Mesh/Target accuracy 0.01 from Contact refinements 0: it reports
   the target reached, and lands within 1 % of the reference in K_secant,
   K_tangent and every pin force (of the largest).
 """
 import argparse
 import os
+import re
 import subprocess
 import sys
 
@@ -101,6 +103,22 @@ def check_resolution(args, text, ref, band):
               "cr%d: resolution_error %.6g is not C / n^2" % (cr, indicator))
         check(true <= indicator + band["pin_forces"],
               "cr%d: pin-force error %.3g above the resolution indicator %.3g" % (cr, true, indicator))
+        # Announced before the solve for the analytical model's most
+        # loaded pin: the same pin's n in the solved state, scaled by the
+        # square root of the two forces (the Hertz width's law; the node
+        # spacing is the same mesh's), to the 2 digits printed.
+        expected = re.search(r"contact resolution expected at [0-9.e+-]+ N m: ([0-9.e+-]+) node\(s\) "
+                             r"across the Hertz width of the most loaded pin \(disc (\d+) pin (\d+), "
+                             r"(\d+) N in the analytical model\)", log)
+        check(expected is not None, "cr%d: no expected resolution before the solve" % cr)
+        if expected:
+            n_exp, disc, pin, f_exp = expected.groups()
+            same = next(r for r in pins if r["disc"] == disc and r["pin"] == pin)
+            n_same = float(same["hertz_nodes"]) * (float(f_exp) / float(same["Fn_N"])) ** 0.5
+            print("cr%d: expected n %s before the solve (disc %s pin %s, %s N); that pin's n after, at the "
+                  "analytical force, %.3g; the most loaded pin's %.3g" % (cr, n_exp, disc, pin, f_exp, n_same, n))
+            check(abs(float(n_exp) / n_same - 1) < 0.06,
+                  "cr%d: expected n %s, the solved state's %.3g at that pin and force" % (cr, n_exp, n_same))
     ratio = got[1][2] / got[3][2]
     check(3.6 <= ratio <= 4.4, "node spacing at cr1 / cr3 is %.2f, not 4" % ratio)
     check(got[1][0]["mesh_warning"] == "1" and "the contact resolution exceeds" in got[1][1],

@@ -5,6 +5,8 @@
 #include <cycloid/postprocess/solution_record.h>
 #include <cycloid/runs/quasi_static.h>
 
+#include <algorithm>
+#include <cmath>
 #include <iostream>
 
 namespace cycloid
@@ -103,6 +105,12 @@ namespace cycloid
       postprocess::Report         report(report_options(settings), comm);
       postprocess::SolutionRecord record(settings.stage.output_directory, comm);
       const std::vector<double>   loads = settings.loading.load_values();
+      // The states' expected resolution at the largest torque, before
+      // the user waits for the first (3D: minutes).
+      scene.announce_resolution(
+        *std::max_element(loads.begin(), loads.end(), [](double a, double b) {
+          return std::abs(a) < std::abs(b);
+        }));
       for (unsigned int step = 0; step < loads.size(); ++step)
         {
           const bool          limit = cycle_zero(settings.loading, loads, step);

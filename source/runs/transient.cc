@@ -248,6 +248,9 @@ namespace cycloid
             << " s, " << time.n_steps() << " steps to "
             << time.time(time.n_steps()) << " s, crank speed " << t.crank_speed
             << " deg/s" << std::endl;
+      // The steps keep one mesh and carry no nested estimate: say at once
+      // how well it resolves the contacts at the run's final torque.
+      scene.announce_resolution(time.load(time.time(time.n_steps())));
 
       for (unsigned int step = first + 1; step <= time.last_step(); ++step)
         {

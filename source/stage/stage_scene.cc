@@ -324,6 +324,46 @@ namespace cycloid
 
     template <int dim>
     void
+    StageScene<dim>::announce_resolution(const double torque) const
+    {
+      const auto &e = settings.mesh.error;
+      if (settings.rotation_control || torque == 0 || e.estimates(dim))
+        return;
+      // The analytical model's largest pin force is within a few per cent
+      // of the FE model's (doc/scene-guide.md) and n goes as its square
+      // root; but it may sit on a neighbour of the FE model's most loaded
+      // pin, whose flank curvature, so Hertz width, differs (by about
+      // 20 % in n on the seed).
+      const results::StageState a =
+        model.stage_state(model.solve(psi, torque, 0.), psi);
+      const auto most = a.most_loaded_pin();
+      if (most == a.pins.end() || !(most->fn > 0))
+        return;
+      const double h =
+        flank_node_spacing(most->disc, most->pin, most->contact_point);
+      if (!(h > 0))
+        return;
+      const double       n = 2. * most->hertz_halfwidth / h;
+      const double       r = results::resolution_constant / (n * n);
+      std::ostringstream line;
+      line << "  contact resolution expected at " << torque
+           << " N m: " << std::setprecision(2) << n
+           << " node(s) across the Hertz width of the most loaded pin (disc "
+           << most->disc << " pin " << most->pin << ", "
+           << std::lround(most->fn) << " N in the analytical model), pin "
+           << "forces to about " << 100. * r << " %";
+      if (e.warning_threshold > 0 && r > e.warning_threshold)
+        line << ": above Mesh/Warning threshold, so the states will be "
+                "flagged; about "
+             << std::ceil(std::log(r / e.warning_threshold) / std::log(4.))
+             << " more Contact refinements would resolve it";
+      pcout << line.str() << std::endl;
+    }
+
+
+
+    template <int dim>
+    void
     StageScene<dim>::compute_rotation_field()
     {
       const auto &el     = contact->elasticity();

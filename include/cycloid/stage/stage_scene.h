@@ -126,6 +126,19 @@ namespace cycloid
       place_discs(const double psi);
 
       /**
+       * Before the first solve, for states that will carry no estimate
+       * from nested levels (3D by default, `Error estimate = false`):
+       * print the contact resolution they are expected to have at torque
+       * @p torque [N m], from the analytical model's most loaded pin (its
+       * Hertz width) and this mesh's node spacing at its contact point,
+       * and whether Mesh/Warning threshold will flag them
+       * (results::resolution_error(); doc/error-estimate.md §6). Nothing
+       * under rotation control or at zero torque.
+       */
+      void
+      announce_resolution(const double torque) const;
+
+      /**
        * Solve for output torque @p load [N m] (or, with rotation control,
        * for the rotation @p load [rad]), warm-started from the previous
        * state (or for the first from the analytical model's rotation), with
