@@ -276,6 +276,9 @@ namespace cycloid
       for (unsigned int k = begin; k < end; ++k)
         {
           auto scene = k == begin ? std::move(first_scene) : make_scene(k, s);
+          // The group's first phase stands for the sweep's resolution.
+          if (k == begin)
+            scene->announce_resolution(largest_load(loads));
           for (unsigned int t = 0; t < loads.size(); ++t)
             {
               results::StageState state =

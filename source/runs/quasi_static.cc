@@ -5,7 +5,6 @@
 #include <cycloid/postprocess/solution_record.h>
 #include <cycloid/runs/quasi_static.h>
 
-#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -22,6 +21,18 @@ namespace cycloid
       if (settings.stage.mesh.write_msh)
         request.msh_file = settings.stage.output_directory + "/stage.msh";
       return request;
+    }
+
+
+
+    double
+    largest_load(const std::vector<double> &loads)
+    {
+      double largest = 0;
+      for (const double x : loads)
+        if (std::abs(x) > std::abs(largest))
+          largest = x;
+      return largest;
     }
 
 
@@ -61,7 +72,7 @@ namespace cycloid
             ") can be reached (doc/error-estimate.md)." :
           "Cure: raise Mesh/Contact refinements (now " +
             std::to_string(m.contact_refinements) +
-            ") by one, or set Mesh/Target accuracy (now 0) to the accuracy "
+            "), or set Mesh/Target accuracy (now 0) to the accuracy "
             "wanted (doc/error-estimate.md).";
       return options;
     }
@@ -107,10 +118,7 @@ namespace cycloid
       const std::vector<double>   loads = settings.loading.load_values();
       // The states' expected resolution at the largest torque, before
       // the user waits for the first (3D: minutes).
-      scene.announce_resolution(
-        *std::max_element(loads.begin(), loads.end(), [](double a, double b) {
-          return std::abs(a) < std::abs(b);
-        }));
+      scene.announce_resolution(largest_load(loads));
       for (unsigned int step = 0; step < loads.size(); ++step)
         {
           const bool          limit = cycle_zero(settings.loading, loads, step);

@@ -27,6 +27,12 @@ namespace cycloid
     mesh::MeshRequest
     mesh_request(const FeRunSettings &settings, const double psi);
 
+    /** The load of largest magnitude in @p loads (0 if empty): the one a
+     * run's expected contact resolution is announced for
+     * (StageScene::announce_resolution()). */
+    double
+    largest_load(const std::vector<double> &loads);
+
     /** Whether state @p i of @p loads is a zero of the torque cycle of
      * @p loading, reported as its branch's limit (StageScene::
      * zero_torque_limit()) instead of solved. */
