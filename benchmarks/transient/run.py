@@ -34,6 +34,17 @@ Parts (run all, or some with --part a,b):
               cg-amg-translations at Contact refinements 0..3: CG iterations
               per solve (2 solves per active-set iteration).
 
+  long        prm/transient-2d.prm on a coarser contact mesh (Contact
+              refinements 1, 85 k DoFs): Newmark through 10 mesh periods
+              (1000 steps of 1e-5 s at 1500 rpm) against contact-stabilised
+              through 3 (its drift shows by then): the relative energy balance
+              error per period, its drift, active-set iterations and time per
+              step (issue #15 item 6).
+  example     prm/transient-2d.prm as shipped, cut to 30 steps (10 after
+              the ramp): contact-stabilised with CG+AMG (the earlier
+              setting), Newmark with CG+AMG and Newmark with KLU (shipped):
+              time per step after the ramp, active-set and CG iterations,
+              and the figures that must not change.
 Writes CSVs and PNGs into doc/transient/ (or --out) and prints a summary
 with markdown tables. FE runs go to --work (default /tmp/cycloid-stability),
 one directory per case; a case whose prm is unchanged is not run again
@@ -65,7 +76,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-PARTS = ["bar", "cycloid", "slow", "active-set", "solver"]
+PARTS = ["bar", "cycloid", "slow", "active-set", "solver", "long", "example"]
 SCHEMES = ["newmark", "contact-stabilised", "generalized-alpha"]
 COLOURS = {"newmark": "tab:red", "contact-stabilised": "tab:blue",
            "generalized-alpha": "tab:green", "ga0.5": "tab:olive",
@@ -750,6 +761,110 @@ def part_solver(args, fe):
     return rows
 
 
+# ---------------------------------------------------------------- parts 6, 7: the 2D example
+EXAMPLE = os.path.join(ROOT, "prm/transient-2d.prm")
+PERIOD = 1e-3  # one mesh period at 9000 deg/s [s]
+
+
+def per_period(e, s, ramp):
+    """Per mesh period: the balance at its end, its largest |balance|, and
+    the mean active-set iterations and wall time per step (after the ramp)."""
+    t = np.array([x["time_s"] for x in e])
+    rel = np.array([x["relative_balance_error"] for x in e])
+    its = np.array([x["active_set_iterations"] for x in e])
+    wall = np.array([x["wall_s"] for x in s])
+    rows = []
+    for k in range(int(round(t[-1] / PERIOD))):
+        m = (t > k * PERIOD + 1e-12) & (t <= (k + 1) * PERIOD + 1e-12)
+        a = m & (t >= ramp - 1e-12)
+        rows.append({"period": k + 1, "relative_balance_error_at_end": rel[m][-1],
+                     "max_abs_relative_balance_error": np.abs(rel[m]).max(),
+                     "active_set_iterations_per_step": its[a].mean(),
+                     "wall_s_per_step": wall[a].mean()})
+    return rows
+
+
+def part_long(args, fe):
+    log("== long: prm/transient-2d.prm at Contact refinements 1, energy over many periods")
+    ramp = 2e-4
+    # (scheme, periods swept by the mesh, time step, steps run or 0: all,
+    # linear solver). The last case halves the step on the second one's
+    # mesh for one period: the order of contact-stabilised's drift.
+    cases = [("newmark", 10, 1e-5, 0, "direct"), ("contact-stabilised", 3, 1e-5, 0, "cg-amg"),
+             ("contact-stabilised", 3, 5e-6, 200, "cg-amg")]
+    rows, series = [], {}
+    for scheme, periods, dt, stop, solver in cases:
+        ov = {("Mesh", "Contact refinements"): 1, ("Transient", "Scheme"): scheme,
+              ("Transient", "End time"): f"{periods * PERIOD:g}", ("Transient", "Output interval"): 0,
+              ("Transient", "Checkpoint interval"): 0, ("Solver", "Linear solver"): solver}
+        if dt != 1e-5:
+            ov[("Transient", "Time step")] = f"{dt:g}"
+        if stop:
+            ov[("Transient", "Stop after step")] = stop
+        label = f"{scheme} dt {dt:g}"
+        m = fe.run(f"long-{scheme}-{periods}" + (f"-dt{dt:g}" if dt != 1e-5 else ""), EXAMPLE, ov)
+        e, s = transient_series(m["dir"])
+        if not e:
+            log(f"  {label}: no rows ({m['error']})")
+            continue
+        for r in per_period(e, s, ramp):
+            rows.append({"scheme": scheme, "dt_s": dt, "linear_solver": solver, **r})
+        series[label] = e
+    write_csv(os.path.join(args.out, "long.csv"), rows)
+    keys = ["scheme", "step", "time_s", "relative_balance_error", "balance_error_J", "kinetic_J",
+            "elastic_J", "external_work_J", "contact_work_J"]
+    write_csv(os.path.join(args.out, "long-series.csv"),
+              [{"scheme": sc, **x} for sc, e in series.items() for x in e], keys)
+    styles = {"newmark dt 1e-05": ("tab:red", "-"), "contact-stabilised dt 1e-05": ("tab:blue", "-"),
+              "contact-stabilised dt 5e-06": ("tab:blue", ":")}
+    fig, ax = plt.subplots(figsize=(6.4, 3.6))
+    for sc, e in series.items():
+        colour, ls = styles.get(sc, ("k", "-"))
+        ax.plot([x["time_s"] * 1e3 for x in e], [100 * x["relative_balance_error"] for x in e],
+                ls, lw=.8, color=colour, label=sc + " s")
+    for y in (-0.5, 0.5):
+        ax.axhline(y, color="k", ls=":", lw=.8)
+    ax.set_xlabel("time [ms] (one mesh period = 1 ms)")
+    ax.set_ylabel("balance error / largest energy level [%]")
+    ax.set_title("2D example, Contact refinements 1, 1500 rpm, 1000 N m", fontsize=9)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.out, "long-balance.png"), dpi=110)
+    plt.close(fig)
+    log(md_table(rows, ["scheme", "dt_s", "period", "relative_balance_error_at_end",
+                        "max_abs_relative_balance_error", "active_set_iterations_per_step", "wall_s_per_step"]))
+    return rows
+
+
+def part_example(args, fe):
+    log("== example: prm/transient-2d.prm, 30 steps, schemes and linear solvers")
+    # Stop after step, not End time: the contact refinement follows the
+    # sweep to End time, so the mesh stays the example's.
+    ramp = 2e-4
+    rows = []
+    for scheme, solver in [("contact-stabilised", "cg-amg"), ("newmark", "cg-amg"), ("newmark", "direct")]:
+        ov = {("Transient", "Scheme"): scheme, ("Transient", "Stop after step"): 30,
+              ("Transient", "Output interval"): 0, ("Transient", "Checkpoint interval"): 0,
+              ("Solver", "Linear solver"): solver}
+        m = fe.run(f"example-{scheme}-{solver}", EXAMPLE, ov)
+        e, s = transient_series(m["dir"])
+        if not e:
+            log(f"  {scheme}/{solver}: no rows ({m['error']})")
+            continue
+        a = [x["time_s"] >= ramp + 1e-12 for x in e]
+        mean = lambda rows_, key: float(np.mean([x[key] for x, y in zip(rows_, a) if y]))
+        rows.append({"scheme": scheme, "linear_solver": solver, "command_wall_s": m["wall_s"],
+                     "wall_s_per_step_after_ramp": mean(s, "wall_s"),
+                     "active_set_iterations_per_step": mean(e, "active_set_iterations"),
+                     "cg_iterations_per_step": mean(s, "linear_iterations"),
+                     "rotation_end_rad": s[-1]["rotation_rad"], "max_pin_force_end_N": s[-1]["max_pin_force_N"],
+                     "relative_balance_error_end": e[-1]["relative_balance_error"]})
+    write_csv(os.path.join(args.out, "example-solvers.csv"), rows)
+    log(md_table(rows, list(rows[0].keys()) if rows else []))
+    return rows
+
+
 # ---------------------------------------------------------------- main
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -783,7 +898,8 @@ def main():
         t0 = time.time()
         results[p] = {"bar": lambda: part_bar(args), "cycloid": lambda: part_cycloid(args, fe),
                       "slow": lambda: part_slow(args, fe), "active-set": lambda: part_active_set(args, fe),
-                      "solver": lambda: part_solver(args, fe)}[p]()
+                      "solver": lambda: part_solver(args, fe), "long": lambda: part_long(args, fe),
+                      "example": lambda: part_example(args, fe)}[p]()
         log(f"== {p} done in {time.time() - t0:.0f} s")
     log(f"total {time.time() - start:.0f} s; outputs in {args.out}, runs in {args.work}")
 
