@@ -764,6 +764,7 @@ def part_solver(args, fe):
 # ---------------------------------------------------------------- parts 6, 7: the 2D example
 EXAMPLE = os.path.join(ROOT, "prm/transient-2d.prm")
 PERIOD = 1e-3  # one mesh period at 9000 deg/s [s]
+RAMP = 2e-4  # the example's Ramp time [s]
 
 
 def per_period(e, s, ramp):
@@ -786,7 +787,6 @@ def per_period(e, s, ramp):
 
 def part_long(args, fe):
     log("== long: prm/transient-2d.prm at Contact refinements 1, energy over many periods")
-    ramp = 2e-4
     # (scheme, periods swept by the mesh, time step, steps run or 0: all,
     # linear solver). The last case halves the step on the second one's
     # mesh for one period: the order of contact-stabilised's drift.
@@ -807,7 +807,7 @@ def part_long(args, fe):
         if not e:
             log(f"  {label}: no rows ({m['error']})")
             continue
-        for r in per_period(e, s, ramp):
+        for r in per_period(e, s, RAMP):
             rows.append({"scheme": scheme, "dt_s": dt, "linear_solver": solver, **r})
         series[label] = e
     write_csv(os.path.join(args.out, "long.csv"), rows)
@@ -841,7 +841,6 @@ def part_example(args, fe):
     log("== example: prm/transient-2d.prm, 30 steps, schemes and linear solvers")
     # Stop after step, not End time: the contact refinement follows the
     # sweep to End time, so the mesh stays the example's.
-    ramp = 2e-4
     rows = []
     for scheme, solver in [("contact-stabilised", "cg-amg"), ("newmark", "cg-amg"), ("newmark", "direct")]:
         ov = {("Transient", "Scheme"): scheme, ("Transient", "Stop after step"): 30,
@@ -852,7 +851,7 @@ def part_example(args, fe):
         if not e:
             log(f"  {scheme}/{solver}: no rows ({m['error']})")
             continue
-        a = [x["time_s"] >= ramp + 1e-12 for x in e]
+        a = [x["time_s"] >= RAMP + 1e-12 for x in e]
         mean = lambda rows_, key: float(np.mean([x[key] for x, y in zip(rows_, a) if y]))
         rows.append({"scheme": scheme, "linear_solver": solver, "command_wall_s": m["wall_s"],
                      "wall_s_per_step_after_ramp": mean(s, "wall_s"),
