@@ -1,0 +1,126 @@
+#!/usr/bin/python3
+"""The same prm on 1, 2, 4 and 8 MPI ranks (issue #14 item 3): do the
+results agree, and how does each rank's peak memory fall with the ranks?
+
+Usage: benchmarks/ranks/run.py [--case NAME[,NAME]] [--ranks 1,2,4,8]
+           [--exe EXE] [--out DIR]
+
+Cases (prm files of the repository, run as they are, no VTU output):
+  3d-one-disc    tests/runs/quasi-static-3d.prm: one disc, elastic pins on
+                 their axes, 100 650 DoFs, 300 and 1000 N m
+  3d-housing     tests/runs/quasi-static-3d-housing.prm: two discs, pins in
+                 the housing, 300 and 1000 N m
+  3d-290k        benchmarks/ml_aggregation/two-discs-3d.prm: two discs,
+                 290 244 DoFs, one state (the memory benchmark's case)
+
+More ranks than the machine's cores run oversubscribed (--oversubscribe):
+that checks the answers, not the speed. Each rank runs under GNU time, so
+every rank's peak resident memory is read, not only their sum
+(`peak_memory_MB` of stiffness.csv).
+
+Every run is compared with the first rank count by the comparison of the
+test run.quasi-static-3d.ranks=4 (tests/check_ranks.py): the rotation beta,
+K_secant and K_tangent (relative), every pin force (relative to the state's
+largest), and whether the states have the same active set (active contact
+nodes of every pin, engaged pins, active-set iterations). Outputs in --out (doc/ranks):
+ranks.csv, one row per case and rank count.
+"""
+import argparse
+import csv
+import glob
+import os
+import re
+import subprocess
+import sys
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "tests"))
+from check_ranks import compare, read  # noqa: E402  (the test's comparison)
+CASES = {
+    "3d-one-disc": "tests/runs/quasi-static-3d.prm",
+    "3d-housing": "tests/runs/quasi-static-3d-housing.prm",
+    "3d-290k": "benchmarks/ml_aggregation/two-discs-3d.prm",
+}
+WORK = "/tmp/cycloid-ranks"
+
+
+def run(case, ranks, exe):
+    """Run CASES[case] on @p ranks ranks; return the whole command's wall
+    time, every rank's peak RSS [MB] and the output directory."""
+    out = os.path.join(WORK, "%s-np%d" % (case, ranks))
+    prm = out + ".prm"
+    with open(prm, "w") as f:
+        f.write(open(os.path.join(ROOT, CASES[case])).read())
+        f.write("\nset Output directory = %s\n" % out)
+        f.write("set Write solution = false\n")
+    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
+    if ranks > os.cpu_count():
+        flags.append("--oversubscribe")
+    load = os.getloadavg()[0]
+    # One file per rank: the ranks' stderr lines interleave.
+    peak_file = out + ".peak."
+    for old in glob.glob(peak_file + "*"):
+        os.remove(old)
+    rank_cmd = ('exec /usr/bin/time -f %%M -o %s$OMPI_COMM_WORLD_RANK %s %s' %
+                (peak_file, exe, prm))
+    cmd = (["/usr/bin/time", "-f", "WALL %e", "mpirun"] + flags +
+           ["-np", str(ranks), "sh", "-c", rank_cmd])
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit("%s on %d ranks failed:\n%s" %
+                 (case, ranks, p.stdout[-3000:] + p.stderr[-3000:]))
+    wall = float(re.search(r"WALL ([\d.]+)", p.stderr).group(1))
+    peaks = [int(open(peak_file + str(r)).read().split()[-1]) / 1024.
+             for r in range(ranks)]
+    return wall, peaks, load, out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--case", default=",".join(CASES))
+    ap.add_argument("--ranks", default="1,2,4,8")
+    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "cycloid-contact"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "doc", "ranks"))
+    args = ap.parse_args()
+    os.makedirs(WORK, exist_ok=True)
+    os.makedirs(args.out, exist_ok=True)
+    rows = []
+    for case in args.case.split(","):
+        ref = None
+        for n in [int(x) for x in args.ranks.split(",")]:
+            wall, peaks, load, out = run(case, n, args.exe)
+            result = read(out)
+            ref = ref or result
+            d = compare(ref, result)
+            states = result[0]
+            row = {"case": case, "ranks": n, "dofs": states[0]["dofs"],
+                   "states": len(states), "load_average": round(load, 2),
+                   "wall_s": wall,
+                   "peak_memory_MB": float(states[-1]["peak_memory_MB"]),
+                   "largest_rank_MB": round(max(peaks), 1),
+                   "mean_rank_MB": round(sum(peaks) / n, 1),
+                   "active_set_iterations": " ".join(
+                       s["active_set_iterations"] for s in states),
+                   "pins_in_contact": " ".join(s["pins_in_contact"] for s in states),
+                   "d_beta": d["beta"], "d_K_secant": d["K_secant"],
+                   "d_K_tangent": d["K_tangent"], "d_pin_forces": d["pin_forces"],
+                   "same_active_set": d["same_active_set"]}
+            rows.append(row)
+            print("  %-12s np%d: %s DoFs, %.1f s, ranks' peak %.0f MB largest, "
+                  "%.0f MB mean (sum %.0f); vs np%s: beta %.1e, K_sec %.1e, "
+                  "K_tan %.1e, pins %.1e, same set %d" %
+                  (case, n, row["dofs"], wall, row["largest_rank_MB"],
+                   row["mean_rank_MB"], row["peak_memory_MB"],
+                   args.ranks.split(",")[0], d["beta"], d["K_secant"],
+                   d["K_tangent"], d["pin_forces"], d["same_active_set"]),
+                  flush=True)
+    path = os.path.join(args.out, "ranks.csv")
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    print("wrote", path)
+
+
+if __name__ == "__main__":
+    main()
