@@ -3,7 +3,7 @@
 results agree, and how does each rank's peak memory fall with the ranks?
 
 Usage: benchmarks/ranks/run.py [--case NAME[,NAME]] [--ranks 1,2,4,8]
-           [--exe EXE] [--out DIR]
+           [--repeat K] [--exe EXE] [--out DIR] [--csv NAME]
 
 Cases (prm files of the repository, run as they are, no VTU output):
   3d-one-disc    tests/runs/quasi-static-3d.prm: one disc, elastic pins on
@@ -26,7 +26,10 @@ test run.quasi-static-3d.ranks=4 (tests/check_ranks.py): the rotation beta,
 K_secant and K_tangent (relative), every pin force (relative to the state's
 largest), and whether the states have the same active set (active contact
 nodes of every pin, engaged pins, active-set iterations). Outputs in --out (doc/ranks):
-ranks.csv, one row per case and rank count.
+--csv (ranks.csv), one row per case, rank count and repeat; rows of other
+cases already in it are kept. For the speed-up of 2 ranks over 1, run
+`--ranks 1,2 --repeat 2 --csv speedup.csv` on an idle machine: the rank
+counts alternate, so neighbouring runs compare.
 """
 import argparse
 import csv
@@ -79,49 +82,59 @@ def run(case, ranks, exe):
     return wall, peaks, load, out
 
 
+def measure(case, n, exe, ref):
+    """Run @p case on @p n ranks; its row of the CSV and its results."""
+    wall, peaks, load, out = run(case, n, exe)
+    result = read(out)
+    d = compare(ref or result, result)
+    states = result[0]
+    row = {"case": case, "ranks": n, "dofs": states[0]["dofs"],
+           "states": len(states), "load_average": round(load, 2),
+           "wall_s": wall,
+           "peak_memory_MB": float(states[-1]["peak_memory_MB"]),
+           "largest_rank_MB": round(max(peaks), 1),
+           "mean_rank_MB": round(sum(peaks) / n, 1),
+           "active_set_iterations": " ".join(
+               s["active_set_iterations"] for s in states),
+           "pins_in_contact": " ".join(s["pins_in_contact"] for s in states),
+           "d_beta": d["beta"], "d_K_secant": d["K_secant"],
+           "d_K_tangent": d["K_tangent"], "d_pin_forces": d["pin_forces"],
+           "same_active_set": d["same_active_set"]}
+    print("  %-12s np%d: %s DoFs, %.1f s (load %.2f before), ranks' peak "
+          "%.0f MB largest, %.0f MB mean (sum %.0f); against the first run: "
+          "beta %.1e, K_sec %.1e, K_tan %.1e, pins %.1e, same set %d" %
+          (case, n, row["dofs"], wall, load, row["largest_rank_MB"],
+           row["mean_rank_MB"], row["peak_memory_MB"], d["beta"],
+           d["K_secant"], d["K_tangent"], d["pin_forces"],
+           d["same_active_set"]), flush=True)
+    return row, result
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--case", default="3d-one-disc,3d-housing,3d-290k")
     ap.add_argument("--ranks", default="1,2,4,8")
+    ap.add_argument("--repeat", type=int, default=1,
+                    help="run the rank counts this many times, interleaved")
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "cycloid-contact"))
     ap.add_argument("--out", default=os.path.join(ROOT, "doc", "ranks"))
+    ap.add_argument("--csv", default="ranks.csv")
     args = ap.parse_args()
     os.makedirs(WORK, exist_ok=True)
     os.makedirs(args.out, exist_ok=True)
     rows = []
     for case in args.case.split(","):
         ref = None
-        for n in [int(x) for x in args.ranks.split(",")]:
-            wall, peaks, load, out = run(case, n, args.exe)
-            result = read(out)
-            ref = ref or result
-            d = compare(ref, result)
-            states = result[0]
-            row = {"case": case, "ranks": n, "dofs": states[0]["dofs"],
-                   "states": len(states), "load_average": round(load, 2),
-                   "wall_s": wall,
-                   "peak_memory_MB": float(states[-1]["peak_memory_MB"]),
-                   "largest_rank_MB": round(max(peaks), 1),
-                   "mean_rank_MB": round(sum(peaks) / n, 1),
-                   "active_set_iterations": " ".join(
-                       s["active_set_iterations"] for s in states),
-                   "pins_in_contact": " ".join(s["pins_in_contact"] for s in states),
-                   "d_beta": d["beta"], "d_K_secant": d["K_secant"],
-                   "d_K_tangent": d["K_tangent"], "d_pin_forces": d["pin_forces"],
-                   "same_active_set": d["same_active_set"]}
-            rows.append(row)
-            print("  %-12s np%d: %s DoFs, %.1f s, ranks' peak %.0f MB largest, "
-                  "%.0f MB mean (sum %.0f); vs np%s: beta %.1e, K_sec %.1e, "
-                  "K_tan %.1e, pins %.1e, same set %d" %
-                  (case, n, row["dofs"], wall, row["largest_rank_MB"],
-                   row["mean_rank_MB"], row["peak_memory_MB"],
-                   args.ranks.split(",")[0], d["beta"], d["K_secant"],
-                   d["K_tangent"], d["pin_forces"], d["same_active_set"]),
-                  flush=True)
+        for k in range(args.repeat):
+            for n in [int(x) for x in args.ranks.split(",")]:
+                row, result = measure(case, n, args.exe, ref)
+                ref = ref or result
+                rows.append(dict(row, repeat=k))
     # Keep the rows of the cases not run now (the seed case is run apart).
-    path = os.path.join(args.out, "ranks.csv")
+    path = os.path.join(args.out, args.csv)
     old = [r for r in csv.DictReader(open(path))] if os.path.exists(path) else []
-    rows = [r for r in old if r["case"] not in args.case.split(",")] + rows
+    rows = [dict(r, repeat=r.get("repeat", 0)) for r in old
+            if r["case"] not in args.case.split(",")] + rows
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[-1]))
         w.writeheader()
