@@ -22,7 +22,7 @@ every rank's peak resident memory is read, not only their sum
 (`peak_memory_MB` of stiffness.csv).
 
 Every run is compared with the first rank count by the comparison of the
-test run.quasi-static-3d.ranks=4 (tests/check_ranks.py): the rotation beta,
+test run.quasi-static-3d.ranks=4,8 (tests/check_ranks.py): the rotation beta,
 K_secant and K_tangent (relative), every pin force (relative to the state's
 largest), and whether the states have the same active set (active contact
 nodes of every pin, engaged pins, active-set iterations). Outputs in --out (doc/ranks):
