@@ -60,16 +60,29 @@ def compare(ref, other):
     return d
 
 
-def run(prm, exe, ranks, work):
-    """Run @p prm on @p ranks ranks with its output in @p work."""
-    text = open(prm).read() + "\nset Output directory = %s\nset Write solution = false\n" % work
+def prm_into(prm, work):
+    """A copy of @p prm that writes its CSV files, and no solution files,
+    into @p work; returns its path."""
     path = work + ".prm"
     with open(path, "w") as f:
-        f.write(text)
+        f.write(open(prm).read())
+        f.write("\nset Output directory = %s\nset Write solution = false\n" % work)
+    return path
+
+
+def mpirun_flags(ranks):
+    """mpirun's flags for @p ranks ranks: as root, and oversubscribed
+    where the ranks exceed the cores."""
     flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
     if ranks > (os.cpu_count() or 1):
         flags.append("--oversubscribe")
-    p = subprocess.run(["mpirun"] + flags + ["-np", str(ranks), exe, path],
+    return flags
+
+
+def run(prm, exe, ranks, work):
+    """Run @p prm on @p ranks ranks with its output in @p work."""
+    path = prm_into(prm, work)
+    p = subprocess.run(["mpirun"] + mpirun_flags(ranks) + ["-np", str(ranks), exe, path],
                        capture_output=True, text=True)
     return p.returncode, p.stdout[-2000:] + p.stderr[-2000:]
 

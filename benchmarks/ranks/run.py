@@ -25,8 +25,9 @@ Every run is compared with the first rank count by the comparison of the
 test run.quasi-static-3d.ranks=4,8 (tests/check_ranks.py): the rotation beta,
 K_secant and K_tangent (relative), every pin force (relative to the state's
 largest), and whether the states have the same active set (active contact
-nodes of every pin, engaged pins, active-set iterations). Outputs in --out (doc/ranks):
---csv (ranks.csv), one row per case, rank count and repeat; rows of other
+nodes of every pin, engaged pins, active-set iterations).
+
+Outputs in --out (doc/ranks): --csv (ranks.csv), one row per case, rank count and repeat; rows of other
 cases already in it are kept. For the speed-up of 2 ranks over 1, run
 `--ranks 1,2 --repeat 2 --csv speedup.csv` on an idle machine: the rank
 counts alternate, so neighbouring runs compare.
@@ -41,7 +42,7 @@ import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "tests"))
-from check_ranks import compare, read  # noqa: E402  (the test's comparison)
+from check_ranks import compare, mpirun_flags, prm_into, read  # noqa: E402
 CASES = {
     "3d-one-disc": "tests/runs/quasi-static-3d.prm",
     "3d-housing": "tests/runs/quasi-static-3d-housing.prm",
@@ -55,14 +56,7 @@ def run(case, ranks, exe):
     """Run CASES[case] on @p ranks ranks; return the whole command's wall
     time, every rank's peak RSS [MB] and the output directory."""
     out = os.path.join(WORK, "%s-np%d" % (case, ranks))
-    prm = out + ".prm"
-    with open(prm, "w") as f:
-        f.write(open(os.path.join(ROOT, CASES[case])).read())
-        f.write("\nset Output directory = %s\n" % out)
-        f.write("set Write solution = false\n")
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    if ranks > os.cpu_count():
-        flags.append("--oversubscribe")
+    prm = prm_into(os.path.join(ROOT, CASES[case]), out)
     load = os.getloadavg()[0]
     # One file per rank: the ranks' stderr lines interleave.
     peak_file = out + ".peak."
@@ -70,7 +64,7 @@ def run(case, ranks, exe):
         os.remove(old)
     rank_cmd = ('exec /usr/bin/time -f %%M -o %s$OMPI_COMM_WORLD_RANK %s %s' %
                 (peak_file, exe, prm))
-    cmd = (["/usr/bin/time", "-f", "WALL %e", "mpirun"] + flags +
+    cmd = (["/usr/bin/time", "-f", "WALL %e", "mpirun"] + mpirun_flags(ranks) +
            ["-np", str(ranks), "sh", "-c", rank_cmd])
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
