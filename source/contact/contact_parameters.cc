@@ -34,6 +34,21 @@ namespace cycloid
                           "(collocation at the slave nodes: cheaper set-up, "
                           "pressures oscillate on non-matching meshes; see "
                           "doc/contact.md).");
+        prm.declare_entry("First active set",
+                          "hertz",
+                          Selection("hertz|overlap"),
+                          "Where the first load state's active set starts: "
+                          "the flank nodes that the analytical model's "
+                          "rotation pushes into the pins, either only those "
+                          "within the Hertz half-width of the analytical pin "
+                          "force plus half a node spacing (at least one "
+                          "spacing) from the unloaded contact point (hertz), "
+                          "or all of them "
+                          "(overlap, about twice as many on fine contact "
+                          "meshes: more active-set iterations, the same "
+                          "answer; doc/contact.md). Under Loading/Control = "
+                          "rotation it is overlap. Later states start from "
+                          "the state before.");
         prm.declare_entry("Residual tolerance",
                           "1e-6",
                           Double(1e-14, 1),
@@ -103,6 +118,9 @@ namespace cycloid
         prm.get_integer("Maximum active set iterations");
       search_distance    = prm.get_double("Search distance");
       residual_tolerance = prm.get_double("Residual tolerance");
+      first_set          = prm.get("First active set") == "hertz" ?
+                             FirstActiveSet::hertz :
+                             FirstActiveSet::overlap;
       formulation        = prm.get("Formulation") == "mortar" ?
                              Formulation::mortar :
                              Formulation::node_to_surface;

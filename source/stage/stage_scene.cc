@@ -653,14 +653,63 @@ namespace cycloid
     {
       // The nodes that the analytical model's rotation pushes into the pins
       // (an empty set leaves the discs free).
+      analytic::LoadState analytical;
+      if (!settings.rotation_control)
+        analytical = model.solve(psi, load, 0.);
       const double beta =
-        settings.rotation_control ? load : model.solve(psi, load, 0.).rotation;
+        settings.rotation_control ? load : analytical.rotation;
+      const std::vector<FirstSetReach> reach =
+        settings.rotation_control ||
+            settings.contact.first_set == contact::FirstActiveSet::overlap ?
+          std::vector<FirstSetReach>() :
+          first_set_reach(model.stage_state(analytical, psi));
+      const unsigned int zp = settings.geometry.n_pins;
       contact->initialise_active_set([&](const contact::SlaveNode<dim> &s) {
         const dealii::Point<2> c = geo.disc_centre(s.body, psi);
         const double n_dot_u = beta * (s.normal[1] * (s.position[0] - c[0]) -
                                        s.normal[0] * (s.position[1] - c[1]));
-        return s.gap0 + n_dot_u < 0;
+        if (!(s.gap0 + n_dot_u < 0))
+          return false;
+        if (reach.empty())
+          return true;
+        const FirstSetReach   &r  = reach[s.body * zp + s.cylinder];
+        const dealii::Point<2> pc = geo.pin_centre(s.cylinder);
+        const double a = std::remainder(std::atan2(s.position[1] - pc[1],
+                                                   s.position[0] - pc[0]) -
+                                          r.angle,
+                                        2. * u::pi);
+        return settings.geometry.pin_radius * std::abs(a) <= r.arc;
       });
+    }
+
+
+
+    template <int dim>
+    std::vector<typename StageScene<dim>::FirstSetReach>
+    StageScene<dim>::first_set_reach(
+      const results::StageState &analytical) const
+    {
+      // The rigid rotation overlaps a pin about sqrt(2) times as wide as the
+      // contact it makes, and the analytical model's rotation overlaps more
+      // nodes than the FE model ends with (1782 against 817 in the 3D seed
+      // case, doc/solver-reuse.md), and the surplus costs active-set
+      // iterations of the state. The Hertz width of the analytical pin force
+      // bounds the set instead, widened by half a node spacing: a node
+      // whose half of the flank reaches into the contact carries pressure.
+      // One node spacing at least, as on a mesh that does not resolve the
+      // width the overlap picks the right nodes.
+      const unsigned int         zp = settings.geometry.n_pins;
+      std::vector<FirstSetReach> reach(settings.scene.n_discs * zp);
+      for (const results::PinState &p : analytical.pins)
+        {
+          const dealii::Point<2> c = geo.pin_centre(p.pin);
+          FirstSetReach         &r = reach[p.disc * zp + p.pin];
+          r.angle =
+            std::atan2(p.contact_point[1] - c[1], p.contact_point[0] - c[0]);
+          const double h = flank_node_spacing(p.disc, p.pin, p.contact_point);
+          r.arc          = std::max(p.hertz_halfwidth + 0.5 * h, h);
+        }
+      return reach;
     }
 
 

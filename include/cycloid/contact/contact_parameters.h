@@ -26,6 +26,9 @@ namespace cycloid
       /** Constraint discretisation (`Formulation`: mortar or
        * node-to-surface). */
       Formulation formulation = Formulation::mortar;
+      /** Where the first state's active set starts (`First active
+       * set`). */
+      FirstActiveSet first_set = FirstActiveSet::hertz;
       /** Largest accepted relative equilibrium residual [-]. */
       double residual_tolerance = 1e-6;
       /** Linear solver (`Linear solver`: cg-amg, cg-amg-translations or

@@ -96,6 +96,20 @@ namespace cycloid
     };
 
     /**
+     * @brief Where the first load state's active set starts
+     * (`Contact/First active set`).
+     */
+    enum class FirstActiveSet
+    {
+      /** The nodes the analytical rotation closes, within the Hertz
+       * half-width of the analytical pin force (plus half a node
+       * spacing). */
+      hertz,
+      /** Every node the analytical rotation closes. */
+      overlap
+    };
+
+    /**
      * @brief Discretisation of the contact constraint of a slave node
      * (Contact/Formulation; create_formulation() builds the implementation
      * by the same names).

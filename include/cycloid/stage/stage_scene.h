@@ -322,10 +322,26 @@ namespace cycloid
       rebuild(const ActiveSetSnapshot<dim> &snapshot);
       void
       compute_rotation_field();
-      /** First state: the active set that the analytical model's rotation
-       * for @p load closes. */
+      /** First state: the nodes that the analytical model's rotation for
+       * @p load closes, under `Contact/First active set = hertz` and torque
+       * control only those within first_set_reach() of the contact
+       * point. */
       void
       initialise_active_set(const double load);
+      /** How far from a pin's unloaded contact point the first active set
+       * reaches. */
+      struct FirstSetReach
+      {
+        /** Angle of the contact point about the pin's centre [rad]. */
+        double angle = 0;
+        /** Arc on the pin [mm]: the Hertz half-width of the analytical
+         * force plus half a node spacing, at least one spacing. */
+        double arc = 0;
+      };
+      /** Per disc and pin (index disc * zp + pin): the reach of the first
+       * active set from the analytical state @p analytical. */
+      std::vector<FirstSetReach>
+      first_set_reach(const results::StageState &analytical) const;
       /** Per disc and pin: force sums in the housing frame and moment. */
       void
       sum_pin_forces(std::vector<results::PinState> &pins) const;
