@@ -17,11 +17,10 @@ half-width of the analytical pin force, the default), and checks
 """
 import os
 import re
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checker import check, rows, verdict  # noqa: E402
+from checker import check, rows, run_debug, verdict  # noqa: E402
 
 
 def run(exe, text, work, start):
@@ -32,14 +31,7 @@ def run(exe, text, work, start):
     with open(prm, "w") as f:
         f.write(text + "\nset Output directory = %s\nsubsection Contact\n  set First active set = %s\nend\n"
                 % (out, start))
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    env = dict(os.environ, CYCLOID_DEBUG="1")
-    with open(out + ".log", "w") as log:
-        rc = subprocess.call(["mpirun"] + flags + ["-np", "2", exe, prm],
-                             stdout=log, stderr=subprocess.STDOUT, env=env)
-    log = open(out + ".log").read()
-    if rc != 0:
-        sys.exit("%s failed (see %s.log):\n%s" % (start, out, log[-2000:]))
+    log = run_debug(exe, prm, out)
     first = re.search(r"iteration 0: .*active (\d+) -> (\d+)", log)
     check(first is not None, "%s: no iteration 0 in the debug output" % start)
     state = rows(os.path.join(out, "stiffness.csv"))[0]

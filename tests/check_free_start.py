@@ -18,11 +18,10 @@ Before the fix the first run stopped with "the active set cycles".
 """
 import os
 import re
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checker import check, rows, verdict  # noqa: E402
+from checker import check, rows, run_debug, verdict  # noqa: E402
 
 
 def run(exe, text, work, name):
@@ -30,14 +29,7 @@ def run(exe, text, work, name):
     prm = out + ".prm"
     with open(prm, "w") as f:
         f.write(re.sub(r"set Output directory *=.*", "set Output directory = " + out, text))
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    env = dict(os.environ, CYCLOID_DEBUG="1")
-    with open(out + ".log", "w") as log:
-        rc = subprocess.call(["mpirun"] + flags + ["-np", "2", exe, prm],
-                             stdout=log, stderr=subprocess.STDOUT, env=env)
-    text = open(out + ".log").read()
-    if rc != 0:
-        sys.exit("%s failed (see %s.log):\n%s" % (name, out, text[-2000:]))
+    text = run_debug(exe, prm, out)
     return rows(os.path.join(out, "stiffness.csv")), rows(os.path.join(out, "pin_forces.csv")), text
 
 

@@ -1,6 +1,10 @@
 """What the run checkers share: collecting the checks that fail, reading a
-CSV file's rows, and the verdict with the exit status."""
+CSV file's rows, the verdict with the exit status, and a run on 2 ranks
+with the debug output."""
 import csv
+import os
+import subprocess
+import sys
 
 failures = []
 
@@ -28,3 +32,18 @@ def verdict(passed="all checks passed", shown=30):
         return 1
     print(passed)
     return 0
+
+
+def run_debug(exe, prm, out):
+    """Run @p exe on @p prm on 2 ranks with CYCLOID_DEBUG=1, stdout and
+    stderr into out.log; exit naming the log if the run fails, else return
+    the log's text."""
+    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
+    env = dict(os.environ, CYCLOID_DEBUG="1")
+    with open(out + ".log", "w") as log:
+        rc = subprocess.call(["mpirun"] + flags + ["-np", "2", exe, prm],
+                             stdout=log, stderr=subprocess.STDOUT, env=env)
+    text = open(out + ".log").read()
+    if rc != 0:
+        sys.exit("%s failed (see %s.log):\n%s" % (prm, out, text[-2000:]))
+    return text
