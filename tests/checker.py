@@ -47,3 +47,16 @@ def run_debug(exe, prm, out):
     if rc != 0:
         sys.exit("%s failed (see %s.log):\n%s" % (prm, out, text[-2000:]))
     return text
+
+
+def merge_csv(path, columns, new, key, replaced):
+    """Write @p new (dicts) to the CSV file @p path with @p columns, after
+    the rows already in it whose @p key is not in @p replaced; return
+    @p path. A benchmark that re-runs some of its cases keeps the others."""
+    kept = rows(path) if os.path.exists(path) else []
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns)
+        w.writeheader()
+        w.writerows([r for r in kept if r[key] not in replaced] + new)
+    return path

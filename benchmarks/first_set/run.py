@@ -23,7 +23,6 @@ the first set's size read from the debug output. Output: --out/first-set.csv
 already in it are kept. Times are for the whole command.
 """
 import argparse
-import csv
 import os
 import sys
 import time
@@ -32,6 +31,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "tests"))
 import check_first_set  # noqa: E402
+from checker import merge_csv  # noqa: E402
 
 CASES = {
     "2d": "tests/runs/first-active-set.prm",
@@ -70,17 +70,7 @@ def main():
     work = os.path.join("/tmp", "cycloid-first-set")
     rows = [one(os.path.abspath(a.exe), c, s, r, work)
             for c in cases for r in range(a.repeat) for s in ("overlap", "hertz")]
-    os.makedirs(a.out, exist_ok=True)
-    path = os.path.join(a.out, "first-set.csv")
-    kept = []
-    if os.path.exists(path):
-        with open(path) as f:
-            kept = [r for r in csv.DictReader(f) if r["case"] not in cases]
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS)
-        w.writeheader()
-        w.writerows(kept + rows)
-    print("wrote", path)
+    print("wrote", merge_csv(os.path.join(a.out, "first-set.csv"), COLUMNS, rows, "case", cases))
 
 
 if __name__ == "__main__":

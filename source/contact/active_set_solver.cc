@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -98,8 +99,12 @@ namespace cycloid
       ContactState                        state;
       std::vector<std::set<unsigned int>> history;
       // Loose solves while the set changes (they only decide the next
-      // set), then the unchanged set once more to the tight tolerance.
-      bool tight     = settings.inner_tolerance <= settings.solver_tolerance;
+      // set), then the unchanged set once more to the tight tolerance. A
+      // time step solves tight throughout: its right-hand side is
+      // dominated by inertia, and CG's residual relative to it is no
+      // measure of the contact forces.
+      bool tight = settings.inner_tolerance <= settings.solver_tolerance ||
+                   problem.dynamic_terms().mass != 0.;
       bool assembled = false;
       // Set after a cycle: the union of its sets is being solved.
       bool cycle_union = false;
@@ -149,22 +154,24 @@ namespace cycloid
 
           std::set<unsigned int> next;
           SetChange              change;
+          std::size_t            moved = 0;
           {
             const OptionalScope scope(timer, "contact: active-set update");
             superpose(
               load_control, value, label, solution.active.empty(), state);
-            next = next_active_set(solution.active,
+            next  = next_active_set(solution.active,
                                    state.beta,
                                    solution.gaps,
                                    change);
+            moved = n_moved(solution.active, next);
           }
           if (verbose)
             std::cerr << "  [active set] " << label << ", iteration " << it
                       << ": beta " << state.beta << ", Q0 " << q0 << ", Q1 "
                       << q1 << ", active " << solution.active.size() << " -> "
-                      << next.size() << ", largest tension "
-                      << change.largest_tension << " of force "
-                      << change.largest_force << std::endl;
+                      << next.size() << " (" << moved
+                      << " moved), largest tension " << change.largest_tension
+                      << " of force " << change.largest_force << std::endl;
           assembled = next == solution.active;
           if (cycle_union)
             {
@@ -180,8 +187,20 @@ namespace cycloid
               history.clear();
             }
           else
-            cycle_union =
-              settle(solution.active, next, history, it, label, tight);
+            {
+              // At most 1 % of the set (at least one node) moved.
+              const bool small =
+                !tight && moved <= std::max<std::size_t>(1, next.size() / 100);
+              cycle_union =
+                settle(solution.active, next, history, it, label, tight);
+              if (small && !cycle_union)
+                {
+                  // A set that moved by a few nodes is most likely the
+                  // last: solving it loose first would only repeat it.
+                  tight = true;
+                  history.clear();
+                }
+            }
         }
       finish(label, state, solution);
       keep_start(solution);
@@ -427,6 +446,22 @@ namespace cycloid
         dealii::Utilities::MPI::max(static_cast<int>(change.entering), comm) >
         0;
       return next;
+    }
+
+
+
+    template <int dim>
+    std::size_t
+    ActiveSetSolver<dim>::n_moved(const std::set<unsigned int> &active,
+                                  const std::set<unsigned int> &next)
+    {
+      std::vector<unsigned int> moved;
+      std::set_symmetric_difference(active.begin(),
+                                    active.end(),
+                                    next.begin(),
+                                    next.end(),
+                                    std::back_inserter(moved));
+      return moved.size();
     }
 
 

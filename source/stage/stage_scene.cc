@@ -176,7 +176,7 @@ namespace cycloid
       cs.max_iterations       = c.max_active_set_iterations;
       cs.search_distance      = c.search_distance;
       cs.solver_tolerance     = c.solver_tolerance;
-      cs.inner_tolerance      = c.inner_tolerance;
+      cs.inner_tolerance      = c.inner(dim);
       cs.reuse_preconditioner = c.reuse_preconditioner;
       cs.residual_tolerance   = c.residual_tolerance;
       cs.formulation          = c.formulation;

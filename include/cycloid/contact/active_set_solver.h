@@ -63,7 +63,9 @@ namespace cycloid
      * stop at ContactSettings::inner_tolerance (they only decide the next
      * set); once it repeats, the same system is solved again to
      * solver_tolerance and the set checked once more, so the reported state
-     * is a tight solution. `iterations` counts the sets assembled. If a
+     * is a tight solution. A set that moved by at most 1 % of its nodes is
+     * solved tight at once, and so is every set of a time step (a mass
+     * term). `iterations` counts the sets assembled. If a
      * timer is given, these stages
      * are timed in its sections "contact: constraints and assembly",
      * "contact: preconditioner", "contact: linear solves", "contact:
@@ -168,6 +170,11 @@ namespace cycloid
                       const double                  beta,
                       std::vector<double>          &gaps,
                       SetChange                    &change) const;
+
+      /** The nodes in one of @p active and @p next but not in both. */
+      static std::size_t
+      n_moved(const std::set<unsigned int> &active,
+              const std::set<unsigned int> &next);
 
       /** Record @p active and move on to @p next (a new set). If @p next
        * was seen before: with loose solves, switch to @p tight ones (a

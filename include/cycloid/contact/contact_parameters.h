@@ -6,6 +6,7 @@
 #include <cycloid/contact/contact_types.h>
 #include <cycloid/elasticity/elasticity.h>
 
+#include <algorithm>
 #include <string>
 
 namespace cycloid
@@ -36,12 +37,27 @@ namespace cycloid
       elasticity::LinearSolver linear_solver = elasticity::LinearSolver::cg_amg;
       /** Relative tolerance of the iterative solver [-]. */
       double solver_tolerance = 1e-10;
+      /** Marks `Inner tolerance = auto`. */
+      static constexpr double automatic = -1;
       /** Relative tolerance of the iterative solver while the active set
-       * still changes (`Inner tolerance`) [-]. */
-      double inner_tolerance = 1e-10;
+       * still changes (`Inner tolerance`) [-]; automatic: see
+       * inner(). */
+      double inner_tolerance = automatic;
       /** Keep the pattern and the AMG hierarchy over active sets, states
        * and time steps (`Preconditioner reuse`). */
       bool reuse_preconditioner = false;
+
+      /** The inner tolerance of a scene of dimension @p dim: auto is
+       * 1e-6 in 3D, where a state's CG iterations are its cost and loose
+       * solves save a quarter of them, and tight in 2D, where they saved
+       * nothing (doc/solver-reuse.md). */
+      double
+      inner(const unsigned int dim) const
+      {
+        return std::max(inner_tolerance == automatic ? (dim == 3 ? 1e-6 : 0.) :
+                                                       inner_tolerance,
+                        solver_tolerance);
+      }
 
       /** Declare subsections `Contact` and `Solver`. */
       static void
