@@ -89,8 +89,8 @@ namespace cycloid
           "set is solved to Relative tolerance, and every set after it. "
           "Time steps always solve tight: their right-hand side is "
           "dominated by inertia, and a loose solve of it cannot decide "
-          "contact. auto: 1e-6 in 3D (measured, the 3D seed case takes 0.6 "
-          "of the CG iterations), 0 in 2D (it saved nothing there; "
+          "contact. auto: 1e-6 in 3D (measured, the 3D seed case takes 0.63 "
+          "of the CG iterations and 0.7 of the time), 0 in 2D (it saved nothing there; "
           "doc/solver-reuse.md).");
         prm.declare_entry("Preconditioner reuse",
                           "false",

@@ -48,9 +48,9 @@ namespace cycloid
       bool reuse_preconditioner = false;
 
       /** The inner tolerance of a scene of dimension @p dim: auto is
-       * 1e-6 in 3D, where a state's CG iterations are its cost and loose
-       * solves save a quarter of them, and tight in 2D, where they saved
-       * nothing (doc/solver-reuse.md). */
+       * 1e-6 in 3D, where a state's CG iterations are its cost (the 3D
+       * seed case takes 0.63 of them with loose solves), and tight in 2D,
+       * where loose solves saved nothing (doc/solver-reuse.md). */
       double
       inner(const unsigned int dim) const
       {
