@@ -62,7 +62,9 @@ in doc/ladder/ladder.csv and keeps the others; --analyse-only rebuilds the
 figures and the summary from the CSVs.
 
 Outputs in --out (doc/ladder): ladder.csv, ranks.csv, seed-study-fe.csv,
-error-vs-time.png, cost-vs-dofs.png, seed-study-fe.png, summary.txt.
+error-vs-time.png, cost-vs-dofs.png, seed-study-fe.png, summary.txt. Read,
+not written: ladder-before-14.csv, the ladder before issue #14's solver work;
+cost-vs-dofs.png draws its fit beside the fit of every scene re-timed since.
 """
 import argparse
 import csv
@@ -75,6 +77,9 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# The ladder as it stood before issue #14's solver work (3D timed
+# 2026-11-27): the cost chart draws its fits beside those of re-timed scenes.
+BEFORE = os.path.join(ROOT, "doc", "ladder", "ladder-before-14.csv")
 T_STAGE = 1000.0
 RP_SEED = 2.2 * 40 / 0.675  # 130.370 mm, the pin circle held fixed in the e sweep
 
@@ -641,6 +646,15 @@ def fit_power(x, y):
     return b, math.exp(my - b * mx)
 
 
+def fitted_runs(rows, scene):
+    """The runs of @p scene that the cost fit uses: this benchmark's own
+    (one timing condition; the contact-speed rows were timed under another
+    load), a-priori meshes, 2 ranks."""
+    return [r for r in rows if r["scene"] == scene and r.get("source") == "ladder" and r["ranks"] == 2
+            and "+ad" not in r["mesh"] and "3D-plane" not in r["mesh"] and has_k(r)
+            and isinstance(r.get("dofs"), int) and r["dofs"] > 0]
+
+
 def plot_cost(path, rows, notes):
     import matplotlib
     matplotlib.use("Agg")
@@ -655,16 +669,24 @@ def plot_cost(path, rows, notes):
         groups.setdefault((r["scene"], fam), []).append(r)
         ax.loglog(r["dofs"], r["wall_s"], "^" if fam == "adaptive" else ("s" if r["source"] != "ladder" else "o"),
                   color=COLOURS[r["scene"]], mfc="none" if r["source"] != "ladder" else None, ms=5)
+    before = {s: fitted_runs(read_csv(BEFORE), s) for s in SCENES[2:]}
     for s in SCENES[2:]:
-        # Fits over this benchmark's own runs only (one timing condition);
-        # the contact-speed rows were timed under another load.
-        rr = [r for r in fe if r["scene"] == s and "+ad" not in r["mesh"] and "3D-plane" not in r["mesh"]
-              and r["source"] == "ladder"]
+        rr = fitted_runs(fe, s)
         if len(rr) >= 2:
             b, a = fit_power([r["dofs"] for r in rr], [r["wall_s"] for r in rr])
             xs = sorted(r["dofs"] for r in rr)
             ax.plot(xs, [a * x ** b for x in xs], "-", color=COLOURS[s], lw=0.8, label=f"{s}: wall ~ DoFs^{b:.2f}")
             notes.append(f"cost fit {s} (a-priori meshes, {len(rr)} runs): wall ~ DoFs^{b:.2f}")
+        old = before[s]
+        if len(old) >= 2 and {r["wall_s"] for r in old} != {r["wall_s"] for r in rr}:
+            # The scene was re-timed: its fit before issue #14 beside it.
+            b, a = fit_power([r["dofs"] for r in old], [r["wall_s"] for r in old])
+            xs = sorted(r["dofs"] for r in old)
+            ax.plot(xs, [a * x ** b for x in xs], ":", color=COLOURS[s], lw=1.2,
+                    label=f"{s}, before #14: wall ~ DoFs^{b:.2f}")
+            ax.plot([r["dofs"] for r in old], [r["wall_s"] for r in old], "x", color=COLOURS[s], ms=4)
+            notes.append(f"cost fit {s} before issue #14 ({os.path.basename(BEFORE)}, {len(old)} runs): "
+                         f"wall ~ DoFs^{b:.2f}")
     # Above 1e5 DoFs the fixed costs (gmsh, set-up: a few s) no longer
     # dominate; 2D and 3D runs mixed, a-priori meshes of this benchmark.
     big = [r for r in fe if r["dofs"] >= 1e5 and r["source"] == "ladder" and "+ad" not in r["mesh"]
@@ -678,7 +700,7 @@ def plot_cost(path, rows, notes):
     ax.set_xlabel("DoFs (final mesh; reduced: its coarse model)")
     ax.set_ylabel("wall time [s] (2 ranks, incl. meshing)")
     ax.set_title("Cost against DoFs (triangles adaptive, open squares doc/contact-speed-3d.csv,\n"
-                 "timed under load and not fitted)", fontsize=8)
+                 "timed under load and not fitted; x and dotted: before issue #14)", fontsize=8)
     ax.grid(True, which="both", lw=0.3)
     ax.legend(fontsize=6)
     fig.tight_layout()

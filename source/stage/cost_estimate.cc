@@ -35,20 +35,23 @@ namespace cycloid
         double      growth;     ///< DoFs growth of one adaptive cycle.
       };
 
-      // Memory: rms error 3 % (2D, 18 runs), 8 % (3D one disc, 5), 14 %
+      // Memory: rms error 3 % (2D, 18 runs), 4 % (3D one disc, 5), 8 %
       // (3D two discs, 7); time: rms 54 % (2D: seconds dominated by the
-      // number of active-set iterations), 7 %, 18 %. Adaptive growth from
-      // the runs cr1+ad2 (2D) and c1 ax1 cr1+ad1 (3D one disc).
+      // number of active-set iterations), 6 %, 18 %. Adaptive growth from
+      // the runs cr1+ad2 (2D) and c1 ax1 cr1+ad1 (3D one disc). The 3D
+      // families re-timed 2026-12-04 (issue #14's solver work: 3D two
+      // discs went from 6.970 kB/DoF and N^1.628 to these).
       constexpr Family two_d{"2D", 2.681, 2.259e-10, 2.059, 1.15};
-      constexpr Family one_disc{"3D one disc", 5.619, 5.606e-7, 1.471, 2.7};
-      constexpr Family two_discs{"3D two discs", 6.970, 6.513e-8, 1.628, 2.7};
+      constexpr Family one_disc{"3D one disc", 3.585, 6.421e-7, 1.386, 2.7};
+      constexpr Family two_discs{"3D two discs", 4.384, 1.816e-5, 1.158, 2.7};
 
       /** Resident memory of a rank before the FE system [MB]: the
        * analytic runs' peak (151 MB) and the intercept of the fits. */
       constexpr double mb_per_rank = 150;
-      /** Per-DoF memory on one rank relative to two (0.71-0.79 measured,
-       * ladder.csv 1- and 2-rank pairs): every rank holds the whole mesh
-       * (parallel::shared::Triangulation), so it grows with the ranks. */
+      /** Per-DoF memory on one rank relative to two (0.71-0.79 measured
+       * in 2D, 0.73 in 3D, ladder.csv 1- and 2-rank pairs): every rank
+       * holds the whole mesh (parallel::shared::Triangulation), so it
+       * grows with the ranks. */
       constexpr double one_rank_memory = 0.74;
       /** Time on n ranks = time on 2 x (2/n)^this: the solve speed-up
        * from 1 to 2 ranks, 1.53-2.20, mean 1.78 (ladder/ranks.csv). */
