@@ -26,7 +26,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checker import check, rows, run_debug, verdict  # noqa: E402
+from checker import check, rows, run_debug, same_state, verdict  # noqa: E402
 
 SOLVE = re.compile(r"iteration (\d+) \((tight|loose)\):")
 UPDATE = re.compile(r"iteration (\d+): .*active (\d+) -> (\d+) \((\d+) moved\)")
@@ -63,19 +63,6 @@ def check_sequence(seq):
             check(t_next == "tight", "a loose solve after a set that moved by %d of %d nodes" % (moved, m))
 
 
-def compare(s0, p0, s1, p1):
-    for key in ("rotation_rad", "K_secant_Nm_per_rad", "K_tangent_Nm_per_rad"):
-        a, b = float(s1[key]), float(s0[key])
-        print("%-22s loose %.12g, tight %.12g" % (key, a, b))
-        check(abs(a - b) <= 1e-8 * abs(b), "%s: %.12g with loose solves, %.12g tight" % (key, a, b))
-    check(s1["pins_in_contact"] == s0["pins_in_contact"], "engaged pins differ")
-    fmax = max(float(r["Fn_N"]) for r in p0.values())
-    worst = max(abs(float(p1[k]["Fn_N"]) - float(p0[k]["Fn_N"])) for k in p0)
-    print("pin forces agree to %.2g of the largest" % (worst / fmax))
-    check(worst <= 1e-8 * fmax, "pin forces differ by %g N (largest %g N)" % (worst, fmax))
-    check(all(p1[k]["active_nodes"] == p0[k]["active_nodes"] for k in p0), "active nodes per pin differ")
-
-
 def state(out):
     pins = {(r["disc"], r["pin"]): r for r in rows(os.path.join(out, "pin_forces.csv"))}
     return rows(os.path.join(out, "stiffness.csv"))[0], pins
@@ -87,7 +74,7 @@ def main():
     inner = "subsection Solver\n  set Inner tolerance = %s\nend"
     tight, _ = run(exe, text, work, "tight", inner % "0")
     loose, log = run(exe, text, work, "loose", inner % "1e-6")
-    compare(*state(tight), *state(loose))
+    same_state(*state(tight), *state(loose), ("tight", "loose"))
     check_sequence(solves(log))
     _, log = run(exe, text, work, "auto", inner % "auto")
     check(all(t == "tight" for t, *_ in solves(log)), "auto made a loose solve in 2D")

@@ -60,3 +60,45 @@ def merge_csv(path, columns, new, key, replaced):
         w.writeheader()
         w.writerows([r for r in kept if r[key] not in replaced] + new)
     return path
+
+
+def same_state(s0, p0, s1, p1, names, tolerance=1e-8):
+    """Check that two runs reached the same contact state: @p s0, @p s1
+    are stiffness.csv rows, @p p0, @p p1 pin_forces.csv rows keyed by
+    (disc, pin); @p names = (name of run 0, name of run 1) for the
+    messages. Rotation, K_secant and K_tangent to @p tolerance, the same
+    engaged pins and active nodes per pin, every pin force to @p tolerance
+    of the largest. Return the largest pin force difference relative to
+    the largest force."""
+    for key in ("rotation_rad", "K_secant_Nm_per_rad", "K_tangent_Nm_per_rad"):
+        a, b = float(s1[key]), float(s0[key])
+        print("%-22s %s %.12g, %s %.12g" % (key, names[1], a, names[0], b))
+        check(abs(a - b) <= tolerance * abs(b),
+              "%s: %.12g (%s) against %.12g (%s)" % (key, a, names[1], b, names[0]))
+    check(s1["pins_in_contact"] == s0["pins_in_contact"], "engaged pins differ")
+    fmax = max(float(r["Fn_N"]) for r in p0.values())
+    worst = max(abs(float(p1[k]["Fn_N"]) - float(p0[k]["Fn_N"])) for k in p0)
+    print("pin forces agree to %.2g of the largest" % (worst / fmax))
+    check(worst <= tolerance * fmax, "pin forces differ by %g N (largest %g N)" % (worst, fmax))
+    check(all(p1[k]["active_nodes"] == p0[k]["active_nodes"] for k in p0), "active nodes per pin differ")
+    return worst / fmax
+
+
+def alternate(doc, cases, settings, one, csv_name, columns, work):
+    """The command line of a benchmark that compares @p settings side by
+    side (doc: @p doc): --case (default @p cases), --repeat, --exe, --out.
+    Calls one(exe, case, setting, repeat, work) for every case and repeat
+    with the settings alternating, so that neighbouring runs compare on a
+    shared machine, and merges the rows into --out/@p csv_name."""
+    import argparse
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--case", default=cases)
+    ap.add_argument("--repeat", type=int, default=1)
+    ap.add_argument("--exe", default=os.path.join(root, "build", "cycloid-contact"))
+    ap.add_argument("--out", default=os.path.join(root, "doc"))
+    a = ap.parse_args()
+    chosen = a.case.split(",")
+    new = [one(os.path.abspath(a.exe), c, s, r, work)
+           for c in chosen for r in range(a.repeat) for s in settings]
+    print("wrote", merge_csv(os.path.join(a.out, csv_name), columns, new, "case", chosen))

@@ -22,7 +22,6 @@ the first set's size read from the debug output. Output: --out/first-set.csv
 (doc/ first-set.csv), one row per case, start and repeat; rows of other cases
 already in it are kept. Times are for the whole command.
 """
-import argparse
 import os
 import sys
 import time
@@ -31,7 +30,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "tests"))
 import check_first_set  # noqa: E402
-from checker import merge_csv  # noqa: E402
+from checker import alternate  # noqa: E402
 
 CASES = {
     "2d": "tests/runs/first-active-set.prm",
@@ -60,17 +59,8 @@ def one(exe, case, start, repeat, work):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--case", default="2d,3d-290k")
-    ap.add_argument("--repeat", type=int, default=1)
-    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "cycloid-contact"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "doc"))
-    a = ap.parse_args()
-    cases = a.case.split(",")
-    work = os.path.join("/tmp", "cycloid-first-set")
-    rows = [one(os.path.abspath(a.exe), c, s, r, work)
-            for c in cases for r in range(a.repeat) for s in ("overlap", "hertz")]
-    print("wrote", merge_csv(os.path.join(a.out, "first-set.csv"), COLUMNS, rows, "case", cases))
+    alternate(__doc__, "2d,3d-290k", ("overlap", "hertz"), one, "first-set.csv", COLUMNS,
+              os.path.join("/tmp", "cycloid-first-set"))
 
 
 if __name__ == "__main__":

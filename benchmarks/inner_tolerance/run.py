@@ -21,7 +21,6 @@ counted from its debug output. Output: --out/inner-tolerance.csv (doc/
 inner-tolerance.csv), one row per case, setting and repeat; rows of other
 cases already in it are kept. Times are for the whole command.
 """
-import argparse
 import os
 import sys
 import time
@@ -30,7 +29,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "tests"))
 import check_inner_tolerance  # noqa: E402
-from checker import merge_csv, rows  # noqa: E402
+from checker import alternate, rows  # noqa: E402
 
 CASES = {
     "3d-test": "tests/runs/quasi-static-3d-housing.prm",
@@ -66,17 +65,8 @@ def one(exe, case, setting, repeat, work):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--case", default="3d-test,3d-290k")
-    ap.add_argument("--repeat", type=int, default=1)
-    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "cycloid-contact"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "doc"))
-    a = ap.parse_args()
-    cases = a.case.split(",")
-    work = os.path.join("/tmp", "cycloid-inner-tolerance")
-    new = [one(os.path.abspath(a.exe), c, s, r, work)
-           for c in cases for r in range(a.repeat) for s in ("0", "auto")]
-    print("wrote", merge_csv(os.path.join(a.out, "inner-tolerance.csv"), COLUMNS, new, "case", cases))
+    alternate(__doc__, "3d-test,3d-290k", ("0", "auto"), one, "inner-tolerance.csv", COLUMNS,
+              os.path.join("/tmp", "cycloid-inner-tolerance"))
 
 
 if __name__ == "__main__":
