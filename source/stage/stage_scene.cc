@@ -66,6 +66,19 @@ namespace cycloid
                comp == 1 ? x[0] - centre[0] :
                            0.;
       }
+
+      /** The angle of @p x about @p centre in the xy plane, measured from
+       * the direction @p from [rad], in [-pi, pi]. */
+      template <int dim>
+      double
+      angle_about(const dealii::Point<dim> &x,
+                  const dealii::Point<2>   &centre,
+                  const double              from)
+      {
+        return std::remainder(std::atan2(x[1] - centre[1], x[0] - centre[0]) -
+                                from,
+                              2. * u::pi);
+      }
     } // namespace
 
 
@@ -672,12 +685,9 @@ namespace cycloid
           return false;
         if (reach.empty())
           return true;
-        const FirstSetReach   &r  = reach[s.body * zp + s.cylinder];
-        const dealii::Point<2> pc = geo.pin_centre(s.cylinder);
-        const double a = std::remainder(std::atan2(s.position[1] - pc[1],
-                                                   s.position[0] - pc[0]) -
-                                          r.angle,
-                                        2. * u::pi);
+        const FirstSetReach &r = reach[s.body * zp + s.cylinder];
+        const double         a =
+          angle_about(s.position, geo.pin_centre(s.cylinder), r.angle);
         return settings.geometry.pin_radius * std::abs(a) <= r.arc;
       });
     }
@@ -704,8 +714,7 @@ namespace cycloid
         {
           const dealii::Point<2> c = geo.pin_centre(p.pin);
           FirstSetReach         &r = reach[p.disc * zp + p.pin];
-          r.angle =
-            std::atan2(p.contact_point[1] - c[1], p.contact_point[0] - c[0]);
+          r.angle                  = angle_about(p.contact_point, c, 0.);
           const double h = flank_node_spacing(p.disc, p.pin, p.contact_point);
           r.arc          = std::max(p.hertz_halfwidth + 0.5 * h, h);
         }
@@ -952,17 +961,12 @@ namespace cycloid
       const auto            &slaves = contact->slave_nodes();
       const auto            &active = contact->active_set();
       const dealii::Point<2> c      = geo.pin_centre(j);
-      const double           a0 =
-        std::atan2(contact_point[1] - c[1], contact_point[0] - c[0]);
+      const double           a0     = angle_about(contact_point, c, 0.);
       std::vector<std::pair<double, bool>> angles;
       for (unsigned int i = 0; i < slaves.size(); ++i)
         if (slaves[i].body == d && slaves[i].cylinder == j)
-          angles.emplace_back(
-            std::remainder(std::atan2(slaves[i].position[1] - c[1],
-                                      slaves[i].position[0] - c[0]) -
-                             a0,
-                           2. * u::pi),
-            active.count(i) > 0);
+          angles.emplace_back(angle_about(slaves[i].position, c, a0),
+                              active.count(i) > 0);
       return angles;
     }
 
