@@ -218,3 +218,61 @@ TEST(Elasticity, RowsComeInNodalBlocksUnlessRenumbered)
           << "degree " << degree << (renumber ? ", renumbered" : "");
       }
 }
+
+
+
+TEST(Elasticity, RigidBodyModesCostNoInternalForce)
+{
+  // The near-null space handed to ML: each translation and rotation,
+  // evaluated at the support points of the owned DoFs, must be a
+  // displacement without strain, so the internal forces of the free body
+  // vanish. A mode built from wrong points (a node mixed up) strains the
+  // body and fails this. Q1 and Q2, on 2 ranks.
+  for (const unsigned int degree : {1u, 2u})
+    {
+      dealii::parallel::shared::Triangulation<3> tria(
+        MPI_COMM_WORLD,
+        dealii::Triangulation<3>::none,
+        false,
+        dealii::parallel::shared::Triangulation<3>::partition_metis);
+      dealii::GridGenerator::subdivided_hyper_rectangle(
+        tria, {4, 3, 2}, dealii::Point<3>(), dealii::Point<3>(4, 3, 2));
+      elasticity::LinearElasticity<3> problem(tria,
+                                              degree,
+                                              {{0, {E, nu, 7850.}}});
+      problem.setup_system([](dealii::AffineConstraints<double> &) {});
+      const auto modes = problem.rigid_body_modes(true);
+      ASSERT_EQ(modes->NumVectors(), 6);
+      const auto &owned = problem.locally_owned_dofs();
+      ASSERT_EQ(static_cast<std::size_t>(modes->MyLength()),
+                owned.n_elements());
+      // One field per column (-1: a shear u_y = x, the strained reference).
+      const auto field = [&](const int k) {
+        dealii::TrilinosWrappers::MPI::Vector o(owned, MPI_COMM_WORLD);
+        for (unsigned int r = 0; r < owned.n_elements(); ++r)
+          o[owned.nth_index_in_set(r)] =
+            k >= 0 ? (*modes)[k][r] :
+                     ((*modes)[1][r] == 1. ? (*modes)[3][r] : 0.);
+        o.compress(dealii::VectorOperation::insert);
+        dealii::TrilinosWrappers::MPI::Vector g(owned,
+                                                problem.locally_relevant_dofs(),
+                                                MPI_COMM_WORLD);
+        g = o;
+        // (A ghosted vector has no norm: sum the owned entries.)
+        const auto f   = problem.internal_forces(g);
+        double     sum = 0;
+        for (const auto i : owned)
+          sum += f[i] * f[i];
+        return std::sqrt(dealii::Utilities::MPI::sum(sum, MPI_COMM_WORLD));
+      };
+      const double strained = field(-1);
+      ASSERT_GT(strained, 0.);
+      for (int k = 0; k < 6; ++k)
+        EXPECT_LT(field(k), 1e-9 * strained)
+          << "degree " << degree << ", mode " << k;
+      // Every owned row carries exactly one unit translation.
+      for (unsigned int r = 0; r < owned.n_elements(); ++r)
+        EXPECT_EQ((*modes)[0][r] + (*modes)[1][r] + (*modes)[2][r], 1.)
+          << "degree " << degree << ", row " << r;
+    }
+}

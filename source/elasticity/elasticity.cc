@@ -781,12 +781,38 @@ namespace cycloid
 
 
     template <int dim>
-    std::map<dealii::types::global_dof_index, dealii::Point<dim>>
-    LinearElasticity<dim>::support_points() const
+    void
+    LinearElasticity<dim>::owned_support_points(
+      std::vector<dealii::Point<dim>> &point,
+      std::vector<int>                &component) const
     {
-      std::map<dealii::types::global_dof_index, dealii::Point<dim>> points;
-      dealii::DoFTools::map_dofs_to_support_points(*map, dofs, points);
-      return points;
+      // From the owned cells only: deal.II's map_dofs_to_support_points()
+      // would map every DoF of the shared mesh on every rank, into a
+      // std::map of one node per DoF (about 100 MB a rank at 1.5 M DoFs).
+      point.assign(locally_owned.n_elements(), dealii::Point<dim>());
+      component.assign(locally_owned.n_elements(), -1);
+      const dealii::Quadrature<dim> nodes(
+        fe.base_element(0).get_unit_support_points());
+      dealii::FEValues<dim>                        values(*map,
+                                   fe,
+                                   nodes,
+                                   dealii::update_quadrature_points);
+      std::vector<dealii::types::global_dof_index> indices(
+        fe.n_dofs_per_cell());
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            values.reinit(cell);
+            cell->get_dof_indices(indices);
+            for (unsigned int i = 0; i < indices.size(); ++i)
+              if (locally_owned.is_element(indices[i]))
+                {
+                  const auto row = locally_owned.index_within_set(indices[i]);
+                  const auto [c, node] = fe.system_to_component_index(i);
+                  component[row]       = c;
+                  point[row]           = values.quadrature_point(node);
+                }
+          }
     }
 
 
@@ -800,24 +826,9 @@ namespace cycloid
       // Row r of this rank must be component r % dim of the support point
       // of rows r - r % dim ... (deal.II numbers a vertex's components
       // together unless renumbered component-wise).
-      std::vector<int>                component(locally_owned.n_elements(), -1);
-      std::vector<dealii::Point<dim>> point(locally_owned.n_elements());
-      std::map<dealii::types::global_dof_index, dealii::Point<dim>> points;
-      dealii::DoFTools::map_dofs_to_support_points(*map, dofs, points);
-      std::vector<dealii::types::global_dof_index> indices(
-        fe.n_dofs_per_cell());
-      for (const auto &cell : dofs.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            cell->get_dof_indices(indices);
-            for (unsigned int i = 0; i < indices.size(); ++i)
-              if (locally_owned.is_element(indices[i]))
-                {
-                  const auto row = locally_owned.index_within_set(indices[i]);
-                  component[row] = fe.system_to_component_index(i).first;
-                  point[row]     = points.at(indices[i]);
-                }
-          }
+      std::vector<int>                component;
+      std::vector<dealii::Point<dim>> point;
+      owned_support_points(point, component);
       bool is_blocked = component.size() % dim == 0;
       for (std::size_t r = 0; is_blocked && r < component.size(); ++r)
         is_blocked = component[r] == static_cast<int>(r % dim) &&
@@ -836,41 +847,33 @@ namespace cycloid
         dim + (with_rotations ? dim * (dim - 1) / 2 : 0);
       auto modes = std::make_unique<Epetra_MultiVector>(
         system_matrix.trilinos_matrix().RowMap(), n_modes);
-      std::map<dealii::types::global_dof_index, dealii::Point<dim>> points;
-      dealii::DoFTools::map_dofs_to_support_points(*map, dofs, points);
-      std::vector<dealii::types::global_dof_index> indices(
-        fe.n_dofs_per_cell());
-      for (const auto &cell : dofs.active_cell_iterators())
+      std::vector<int>                component;
+      std::vector<dealii::Point<dim>> point;
+      owned_support_points(point, component);
+      for (std::size_t row = 0; row < point.size(); ++row)
         {
-          if (!cell->is_locally_owned())
+          const int c = component[row];
+          if (c < 0)
             continue;
-          cell->get_dof_indices(indices);
-          for (unsigned int i = 0; i < indices.size(); ++i)
+          const dealii::Point<dim> &x = point[row];
+          (*modes)[c][row]            = 1.;
+          if (!with_rotations)
+            continue;
+          // Rotation about z: (-y, x); in 3D also about x and y.
+          if (c == 0)
+            (*modes)[dim][row] = -x[1];
+          if (c == 1)
+            (*modes)[dim][row] = x[0];
+          if (dim == 3)
             {
-              if (!locally_owned.is_element(indices[i]))
-                continue;
-              const unsigned int c = fe.system_to_component_index(i).first;
-              const auto row       = locally_owned.index_within_set(indices[i]);
-              const dealii::Point<dim> &x = points.at(indices[i]);
-              (*modes)[c][row]            = 1.;
-              if (!with_rotations)
-                continue;
-              // Rotation about z: (-y, x); in 3D also about x and y.
-              if (c == 0)
-                (*modes)[dim][row] = -x[1];
               if (c == 1)
-                (*modes)[dim][row] = x[0];
-              if (dim == 3)
-                {
-                  if (c == 1)
-                    (*modes)[dim + 1][row] = -x[dim - 1];
-                  if (c == dim - 1)
-                    (*modes)[dim + 1][row] = x[1];
-                  if (c == dim - 1)
-                    (*modes)[dim + 2][row] = -x[0];
-                  if (c == 0)
-                    (*modes)[dim + 2][row] = x[dim - 1];
-                }
+                (*modes)[dim + 1][row] = -x[dim - 1];
+              if (c == dim - 1)
+                (*modes)[dim + 1][row] = x[1];
+              if (c == dim - 1)
+                (*modes)[dim + 2][row] = -x[0];
+              if (c == 0)
+                (*modes)[dim + 2][row] = x[dim - 1];
             }
         }
       return modes;

@@ -352,10 +352,6 @@ namespace cycloid
       dealii::TrilinosWrappers::MPI::Vector
       internal_forces(const dealii::TrilinosWrappers::MPI::Vector &u) const;
 
-      /** Support points of all locally relevant DoFs. */
-      std::map<dealii::types::global_dof_index, dealii::Point<dim>>
-      support_points() const;
-
       /** Locally owned DoFs. */
       const dealii::IndexSet &
       locally_owned_dofs() const
@@ -425,6 +421,12 @@ namespace cycloid
       rigid_body_modes(const bool with_rotations) const;
 
     private:
+      /** The support point and vector component of every locally owned
+       * DoF, by its row (index within the owned set). */
+      void
+      owned_support_points(std::vector<dealii::Point<dim>> &point,
+                           std::vector<int>                &component) const;
+
       /** f += f_int(u) over the owned cells (those of @p cells if given);
        * with @p condense, also @p condensed += C^T f_int(u) (constrained
        * entries moved onto their masters). */
