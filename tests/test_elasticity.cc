@@ -19,12 +19,27 @@
 
 #include <cmath>
 #include <iostream>
+#include <memory>
 
 using namespace cycloid;
 
 namespace
 {
   constexpr double ri = 0.2, ro = 1.0, E = 1e9, nu = 0.2, p = 1e6;
+
+  /** A 4 x 3 x 2 box of unit cells on a shared mesh (METIS partition). */
+  std::unique_ptr<dealii::parallel::shared::Triangulation<3>>
+  box_mesh()
+  {
+    auto tria = std::make_unique<dealii::parallel::shared::Triangulation<3>>(
+      MPI_COMM_WORLD,
+      dealii::Triangulation<3>::none,
+      false,
+      dealii::parallel::shared::Triangulation<3>::partition_metis);
+    dealii::GridGenerator::subdivided_hyper_rectangle(
+      *tria, {4, 3, 2}, dealii::Point<3>(), dealii::Point<3>(4, 3, 2));
+    return tria;
+  }
 
   /** Lame: u_r = (1+nu)/E ((1-2nu) A r + B / r), plane strain. */
   class Exact : public dealii::Function<2>
@@ -200,14 +215,8 @@ TEST(Elasticity, RowsComeInNodalBlocksUnlessRenumbered)
   for (const unsigned int degree : {1u, 2u})
     for (const bool renumber : {false, true})
       {
-        dealii::parallel::shared::Triangulation<3> tria(
-          MPI_COMM_WORLD,
-          dealii::Triangulation<3>::none,
-          false,
-          dealii::parallel::shared::Triangulation<3>::partition_metis);
-        dealii::GridGenerator::subdivided_hyper_rectangle(
-          tria, {4, 3, 2}, dealii::Point<3>(), dealii::Point<3>(4, 3, 2));
-        elasticity::LinearElasticity<3> problem(tria,
+        const auto                      tria = box_mesh();
+        elasticity::LinearElasticity<3> problem(*tria,
                                                 degree,
                                                 {{0, {E, nu, 7850.}}});
         problem.setup_system([](dealii::AffineConstraints<double> &) {});
@@ -230,14 +239,8 @@ TEST(Elasticity, RigidBodyModesCostNoInternalForce)
   // body and fails this. Q1 and Q2, on 2 ranks.
   for (const unsigned int degree : {1u, 2u})
     {
-      dealii::parallel::shared::Triangulation<3> tria(
-        MPI_COMM_WORLD,
-        dealii::Triangulation<3>::none,
-        false,
-        dealii::parallel::shared::Triangulation<3>::partition_metis);
-      dealii::GridGenerator::subdivided_hyper_rectangle(
-        tria, {4, 3, 2}, dealii::Point<3>(), dealii::Point<3>(4, 3, 2));
-      elasticity::LinearElasticity<3> problem(tria,
+      const auto                      tria = box_mesh();
+      elasticity::LinearElasticity<3> problem(*tria,
                                               degree,
                                               {{0, {E, nu, 7850.}}});
       problem.setup_system([](dealii::AffineConstraints<double> &) {});
