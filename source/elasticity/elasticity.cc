@@ -787,8 +787,9 @@ namespace cycloid
       std::vector<int>                &component) const
     {
       // From the owned cells only: deal.II's map_dofs_to_support_points()
-      // would map every DoF of the shared mesh on every rank, into a
-      // std::map of one node per DoF (about 100 MB a rank at 1.5 M DoFs).
+      // maps every DoF of the shared mesh on every rank, into a std::map
+      // of one node per DoF; on the 1.5 M-DoF seed case that took 2.8 s of
+      // the first AMG set-up (doc/solver-reuse.md).
       point.assign(locally_owned.n_elements(), dealii::Point<dim>());
       component.assign(locally_owned.n_elements(), -1);
       const dealii::Quadrature<dim> nodes(
@@ -924,7 +925,7 @@ namespace cycloid
       std::unique_ptr<Epetra_MultiVector> unused;
       data.set_parameters(parameters, unused, system_matrix);
       // The modes depend on the DoFs only: built once per distribution
-      // (they walk the support points of the whole mesh).
+      // (they map the support points of the owned cells).
       const unsigned int n_modes =
         solver == Solver::cg_amg ? dim * (dim + 1) / 2 : dim;
       if (!null_space ||
