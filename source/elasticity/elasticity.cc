@@ -13,6 +13,7 @@
 #include <deal.II/lac/trilinos_solver.h>
 
 #include <cycloid/elasticity/elasticity.h>
+#include <cycloid/elasticity/support_points.h>
 
 #include <algorithm>
 
@@ -792,12 +793,7 @@ namespace cycloid
       // the first AMG set-up (doc/solver-reuse.md).
       point.assign(locally_owned.n_elements(), dealii::Point<dim>());
       component.assign(locally_owned.n_elements(), -1);
-      const dealii::Quadrature<dim> nodes(
-        fe.base_element(0).get_unit_support_points());
-      dealii::FEValues<dim>                        values(*map,
-                                   fe,
-                                   nodes,
-                                   dealii::update_quadrature_points);
+      auto values = support_point_values(*this);
       std::vector<dealii::types::global_dof_index> indices(
         fe.n_dofs_per_cell());
       for (const auto &cell : dofs.active_cell_iterators())
