@@ -14,6 +14,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <cycloid/elasticity/elasticity.h>
+#include <cycloid/elasticity/sparse_cholesky.h>
 
 #include <gtest/gtest.h>
 
@@ -278,4 +279,116 @@ TEST(Elasticity, RigidBodyModesCostNoInternalForce)
         EXPECT_EQ((*modes)[0][r] + (*modes)[1][r] + (*modes)[2][r], 1.)
           << "degree " << degree << ", row " << r;
     }
+}
+
+
+
+namespace
+{
+  /** A symmetric positive definite test matrix of size n on the ranks
+   * (rows split evenly): 4 on the diagonal, -1 to the neighbours, -0.5 to
+   * row i + n/3 (so that rows couple across the ranks and the columns come
+   * unsorted into the gathered triangle), and a stored zero at (i, i + 2). */
+  void
+  fill_test_matrix(dealii::TrilinosWrappers::SparseMatrix &A,
+                   const unsigned int                      n,
+                   const double                            scale)
+  {
+    const auto comm = MPI_COMM_WORLD;
+    const auto owned =
+      dealii::Utilities::create_evenly_distributed_partitioning(
+        dealii::Utilities::MPI::this_mpi_process(comm),
+        dealii::Utilities::MPI::n_mpi_processes(comm),
+        n);
+    const auto entries = [&](const unsigned int i) {
+      std::vector<std::pair<unsigned int, double>> e{{i, 4. * scale}};
+      for (const int d : {-1, 1})
+        if (i + d < n)
+          e.push_back({i + d, -scale});
+      for (const int d : {-int(n / 3), int(n / 3)})
+        if (i + d < n)
+          e.push_back({i + d, -0.5 * scale});
+      for (const int d : {-2, 2})
+        if (i + d < n)
+          e.push_back({i + d, 0.});
+      return e;
+    };
+    if (A.m() != n)
+      {
+        dealii::DynamicSparsityPattern dsp(n, n, owned);
+        for (const auto i : owned)
+          for (const auto &[j, v] : entries(i))
+            dsp.add(i, j);
+        A.reinit(owned, owned, dsp, comm);
+      }
+    for (const auto i : owned)
+      for (const auto &[j, v] : entries(i))
+        A.set(i, j, v);
+    A.compress(dealii::VectorOperation::insert);
+  }
+
+  /** Largest error of the Cholesky solution of A x = A x_exact (x_exact_i
+   * = sin i) over the ranks. */
+  double
+  cholesky_error(const elasticity::SparseCholesky             &cholesky,
+                 const dealii::TrilinosWrappers::SparseMatrix &A)
+  {
+    const auto                            comm = MPI_COMM_WORLD;
+    dealii::TrilinosWrappers::MPI::Vector exact(A.locally_owned_range_indices(),
+                                                comm),
+      b(exact), x(exact);
+    for (const auto i : A.locally_owned_range_indices())
+      exact[i] = std::sin(double(i));
+    exact.compress(dealii::VectorOperation::insert);
+    A.vmult(b, exact);
+    cholesky.solve(x, b);
+    x -= exact;
+    return x.linfty_norm();
+  }
+} // namespace
+
+
+
+TEST(Elasticity, CholeskySolvesAndRefusesWhatItCannot)
+{
+  // A 2D-sized check of SparseCholesky (LinearSolver::direct), on 1 and 2
+  // ranks: it must solve an SPD matrix to rounding, keep the analysis for
+  // new values on the same pattern, and refuse (on every rank) a matrix
+  // that is not symmetric or not positive definite instead of returning a
+  // wrong answer.
+  const unsigned int                     n = 301;
+  dealii::TrilinosWrappers::SparseMatrix A;
+  elasticity::SparseCholesky             cholesky(MPI_COMM_WORLD);
+  fill_test_matrix(A, n, 1.);
+  ASSERT_TRUE(cholesky.factorize(A)) << cholesky.failure();
+  EXPECT_FALSE(cholesky.reused_analysis());
+  EXPECT_LT(cholesky_error(cholesky, A), 1e-13);
+
+  fill_test_matrix(A, n, 2.5);
+  ASSERT_TRUE(cholesky.factorize(A)) << cholesky.failure();
+  EXPECT_TRUE(cholesky.reused_analysis());
+  EXPECT_LT(cholesky_error(cholesky, A), 1e-13);
+
+  // One off-diagonal entry of the upper triangle changed: not symmetric.
+  const auto owned = A.locally_owned_range_indices();
+  if (owned.is_element(10))
+    A.set(10, 11, -1.5);
+  A.compress(dealii::VectorOperation::insert);
+  EXPECT_FALSE(cholesky.factorize(A));
+  EXPECT_NE(cholesky.failure().find("not symmetric"), std::string::npos)
+    << cholesky.failure();
+
+  // Symmetric again, with a negative diagonal entry: not positive definite.
+  fill_test_matrix(A, n, 1.);
+  if (owned.is_element(n / 2))
+    A.set(n / 2, n / 2, -1.);
+  A.compress(dealii::VectorOperation::insert);
+  EXPECT_FALSE(cholesky.factorize(A));
+  EXPECT_NE(cholesky.failure().find("not positive definite"), std::string::npos)
+    << cholesky.failure();
+
+  // And it recovers on a good matrix.
+  fill_test_matrix(A, n, 1.);
+  ASSERT_TRUE(cholesky.factorize(A)) << cholesky.failure();
+  EXPECT_LT(cholesky_error(cholesky, A), 1e-13);
 }

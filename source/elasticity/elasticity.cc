@@ -1,5 +1,6 @@
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
@@ -16,6 +17,7 @@
 #include <cycloid/elasticity/support_points.h>
 
 #include <algorithm>
+#include <iostream>
 
 #include <Amesos.h>
 #include <Epetra_LinearProblem.h>
@@ -895,6 +897,11 @@ namespace cycloid
         {
           if (ready == Ready::direct)
             return false;
+          ++n_builds;
+          ready        = Ready::direct;
+          use_cholesky = solver == Solver::direct && try_cholesky();
+          if (use_cholesky)
+            return true;
           direct_control = std::make_unique<dealii::SolverControl>(1, 0);
           direct = std::make_unique<dealii::TrilinosWrappers::SolverDirect>(
             *direct_control,
@@ -902,8 +909,6 @@ namespace cycloid
               false,
               solver == Solver::direct_mumps ? "Amesos_Mumps" : "Amesos_Klu"));
           direct->initialize(system_matrix);
-          ready = Ready::direct;
-          ++n_builds;
           return true;
         }
       if (ready == Ready::amg || (ready == Ready::stale_amg && !rebuild_amg) ||
@@ -951,6 +956,31 @@ namespace cycloid
 
 
     template <int dim>
+    bool
+    LinearElasticity<dim>::try_cholesky()
+    {
+      // Every operator of this project with its supports is symmetric
+      // positive definite; a matrix that is not (a body left free, a
+      // formulation that breaks symmetry) goes to LU, and so does the rest
+      // of the run rather than gathering and refusing again each time.
+      if (cholesky_refused)
+        return false;
+      if (!cholesky)
+        cholesky = std::make_unique<SparseCholesky>(comm);
+      if (cholesky->factorize(system_matrix))
+        return true;
+      dealii::ConditionalOStream(
+        std::cerr, dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+        << "  note: " << cholesky->failure()
+        << "; the direct solver uses KLU (LU) from here on\n";
+      cholesky_refused = true;
+      cholesky.reset();
+      return false;
+    }
+
+
+
+    template <int dim>
     unsigned int
     LinearElasticity<dim>::solve_set(const unsigned int k,
                                      const Solver       solver,
@@ -987,7 +1017,10 @@ namespace cycloid
       else if (is_direct(solver))
         {
           setup_preconditioner(solver);
-          direct->solve(x, rhs);
+          if (use_cholesky)
+            cholesky->solve(x, rhs);
+          else
+            direct->solve(x, rhs);
         }
       else
         {

@@ -187,8 +187,8 @@ namespace cycloid
         dealii::FEFaceValues<dim>                face_values;
       };
 
-      /** The load cases solved one at a time (KLU, or CG + AMG), with a
-       * progress line about every tenth of them. */
+      /** The load cases solved one at a time (the direct solver, or CG +
+       * AMG), with a progress line about every tenth of them. */
       template <int dim>
       void
       solve_one_by_one(elasticity::LinearElasticity<dim> &problem,

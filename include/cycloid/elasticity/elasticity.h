@@ -17,6 +17,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <cycloid/elasticity/sparse_cholesky.h>
 #include <cycloid/parameters/material.h>
 
 #include <functional>
@@ -42,7 +43,9 @@ namespace cycloid
       /** CG with ML AMG given only the translations (for studies: how
        * much the rotations matter). */
       cg_amg_translations_only,
-      /** Direct sparse solver (Amesos KLU). */
+      /** Direct sparse solver on the matrix gathered to rank 0: Cholesky
+       * (CHOLMOD, SparseCholesky), or Amesos' KLU (LU) for a matrix that is
+       * not symmetric positive definite. */
       direct,
       /** Direct sparse solver (Amesos MUMPS, parallel): for many
        * right-hand sides of one 3D matrix (the reduced model's load
@@ -511,6 +514,11 @@ namespace cycloid
       void
       reinit_matrix(dealii::DynamicSparsityPattern &dsp);
 
+      /** Factorise the matrix with cholesky unless it refused one before;
+       * whether it did (else the caller uses KLU). */
+      bool
+      try_cholesky();
+
       /** CG with the AMG on @p rhs from @p x, at most @p max_steps
        * iterations; returns the iterations or throws NoConvergence. */
       unsigned int
@@ -520,6 +528,13 @@ namespace cycloid
              dealii::TrilinosWrappers::MPI::Vector       &x);
       std::unique_ptr<dealii::SolverControl>                  direct_control;
       std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> direct;
+      /** The Cholesky factorisation of LinearSolver::direct (kept with its
+       * symbolic analysis between matrices). */
+      std::unique_ptr<SparseCholesky> cholesky;
+      /** Whether the current factorisation is cholesky's (else direct's). */
+      bool use_cholesky = false;
+      /** Whether cholesky refused a matrix (then the run uses KLU). */
+      bool cholesky_refused = false;
       /** solve_many()'s linear problem and MUMPS factorisation, kept for
        * later calls while the matrix stays (reset with it); shared_ptr
        * holds Amesos' types without their headers here. */
