@@ -2,7 +2,7 @@
 """Stability study of the transient schemes (issue #5 item 5).
 
 Where does each time scheme fail, and how does the program notice?
-Parts (run all, or some with --part a,b):
+Parts (run all but long-example, or some with --part a,b):
 
   bar         build/bar-impact (elastic bar against a rigid wall, 1D closed
               form: force rho c h v0, contact time 2L/c, rebound -v0):
@@ -40,6 +40,10 @@ Parts (run all, or some with --part a,b):
               through 3 (its drift shows by then): the relative energy balance
               error per period, its drift, active-set iterations and time per
               step (issue #15 item 6).
+  long-example the example as shipped (Contact refinements 3; along a
+              10-period sweep 417 k DoFs), Newmark through 10 mesh periods:
+              the same figures (long-example.csv, -series.csv,
+              -balance.png); about 1.5 h on 2 cores (--timeout 7200).
   example     prm/transient-2d.prm as shipped, cut to 30 steps (10 after
               the ramp): contact-stabilised with CG+AMG (the earlier
               setting), Newmark with CG+AMG and Newmark with KLU (shipped):
@@ -76,7 +80,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-PARTS = ["bar", "cycloid", "slow", "active-set", "solver", "long", "example"]
+PARTS = ["bar", "cycloid", "slow", "active-set", "solver", "long", "long-example", "example"]
 SCHEMES = ["newmark", "contact-stabilised", "generalized-alpha"]
 COLOURS = {"newmark": "tab:red", "contact-stabilised": "tab:blue",
            "generalized-alpha": "tab:green", "ga0.5": "tab:olive",
@@ -792,28 +796,46 @@ def part_long(args, fe):
     # mesh for one period: the order of contact-stabilised's drift.
     cases = [("newmark", 10, 1e-5, 0, "direct"), ("contact-stabilised", 3, 1e-5, 0, "cg-amg"),
              ("contact-stabilised", 3, 5e-6, 200, "cg-amg")]
+    return long_runs(args, fe, cases, 1, "long", "2D example, Contact refinements 1, 1500 rpm, 1000 N m")
+
+
+def part_long_example(args, fe):
+    log("== long-example: prm/transient-2d.prm as shipped (Contact refinements 3), Newmark over 10 periods")
+    return long_runs(args, fe, [("newmark", 10, 1e-5, 0, "direct")], None, "long-example",
+                     "2D example as shipped (Contact refinements 3), 1500 rpm, 1000 N m",
+                     checkpoints=100)
+
+
+def long_runs(args, fe, cases, refinements, prefix, title, checkpoints=0):
+    """The cases over many mesh periods on the example: per period the
+    balance error, iterations and time per step (<prefix>.csv), the series
+    (<prefix>-series.csv) and the balance chart (<prefix>-balance.png).
+    refinements None keeps the example's Contact refinements."""
     rows, series = [], {}
     for scheme, periods, dt, stop, solver in cases:
-        ov = {("Mesh", "Contact refinements"): 1, ("Transient", "Scheme"): scheme,
+        ov = {("Transient", "Scheme"): scheme,
               ("Transient", "End time"): f"{periods * PERIOD:g}", ("Transient", "Output interval"): 0,
-              ("Transient", "Checkpoint interval"): 0, ("Solver", "Linear solver"): solver}
+              ("Transient", "Checkpoint interval"): checkpoints, ("Solver", "Linear solver"): solver}
+        if refinements is not None:
+            ov[("Mesh", "Contact refinements")] = refinements
         if dt != 1e-5:
             ov[("Transient", "Time step")] = f"{dt:g}"
         if stop:
             ov[("Transient", "Stop after step")] = stop
         label = f"{scheme} dt {dt:g}"
-        m = fe.run(f"long-{scheme}-{periods}" + (f"-dt{dt:g}" if dt != 1e-5 else ""), EXAMPLE, ov)
+        m = fe.run(f"{prefix}-{scheme}-{periods}" + (f"-dt{dt:g}" if dt != 1e-5 else ""), EXAMPLE, ov)
         e, s = transient_series(m["dir"])
         if not e:
             log(f"  {label}: no rows ({m['error']})")
             continue
         for r in per_period(e, s, RAMP):
             rows.append({"scheme": scheme, "dt_s": dt, "linear_solver": solver, **r})
+        rows[-1]["drift_per_period"] = drift_per_period(e, RAMP)
         series[label] = e
-    write_csv(os.path.join(args.out, "long.csv"), rows)
+    write_csv(os.path.join(args.out, f"{prefix}.csv"), rows)
     keys = ["scheme", "step", "time_s", "relative_balance_error", "balance_error_J", "kinetic_J",
             "elastic_J", "external_work_J", "contact_work_J"]
-    write_csv(os.path.join(args.out, "long-series.csv"),
+    write_csv(os.path.join(args.out, f"{prefix}-series.csv"),
               [{"scheme": sc, **x} for sc, e in series.items() for x in e], keys)
     styles = {"newmark dt 1e-05": ("tab:red", "-"), "contact-stabilised dt 1e-05": ("tab:blue", "-"),
               "contact-stabilised dt 5e-06": ("tab:blue", ":")}
@@ -826,15 +848,27 @@ def part_long(args, fe):
         ax.axhline(y, color="k", ls=":", lw=.8)
     ax.set_xlabel("time [ms] (one mesh period = 1 ms)")
     ax.set_ylabel("balance error / largest energy level [%]")
-    ax.set_title("2D example, Contact refinements 1, 1500 rpm, 1000 N m", fontsize=9)
+    ax.set_title(title, fontsize=9)
     ax.legend(fontsize=8)
     ax.grid(alpha=.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(args.out, "long-balance.png"), dpi=110)
+    fig.savefig(os.path.join(args.out, f"{prefix}-balance.png"), dpi=110)
     plt.close(fig)
     log(md_table(rows, ["scheme", "dt_s", "period", "relative_balance_error_at_end",
-                        "max_abs_relative_balance_error", "active_set_iterations_per_step", "wall_s_per_step"]))
+                        "max_abs_relative_balance_error", "active_set_iterations_per_step", "wall_s_per_step",
+                        "drift_per_period"]))
     return rows
+
+
+def drift_per_period(e, ramp):
+    """Slope of the relative balance error after the ramp, per mesh period
+    (least squares)."""
+    t = np.array([x["time_s"] for x in e])
+    rel = np.array([x["relative_balance_error"] for x in e])
+    a = t >= ramp - 1e-12
+    if a.sum() < 2:
+        return float("nan")
+    return float(np.polyfit(t[a] / PERIOD, rel[a], 1)[0])
 
 
 def part_example(args, fe):
@@ -867,7 +901,8 @@ def part_example(args, fe):
 # ---------------------------------------------------------------- main
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--part", default=",".join(PARTS), help="comma-separated: " + ",".join(PARTS))
+    ap.add_argument("--part", default=",".join(p for p in PARTS if p != "long-example"),
+                    help="comma-separated: " + ",".join(PARTS) + " (default: all but long-example)")
     ap.add_argument("--quick", action="store_true", help="fewer cases (a smoke test of every part)")
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--exe", default=os.path.join(ROOT, "build/cycloid-contact"))
@@ -898,7 +933,7 @@ def main():
         results[p] = {"bar": lambda: part_bar(args), "cycloid": lambda: part_cycloid(args, fe),
                       "slow": lambda: part_slow(args, fe), "active-set": lambda: part_active_set(args, fe),
                       "solver": lambda: part_solver(args, fe), "long": lambda: part_long(args, fe),
-                      "example": lambda: part_example(args, fe)}[p]()
+                      "long-example": lambda: part_long_example(args, fe), "example": lambda: part_example(args, fe)}[p]()
         log(f"== {p} done in {time.time() - t0:.0f} s")
     log(f"total {time.time() - start:.0f} s; outputs in {args.out}, runs in {args.work}")
 
