@@ -31,6 +31,19 @@ Usage:
       agree with the same run at a 1000 times tighter tolerance (which
       does not cycle): every pin force within 1e-6 of the largest and the
       rotation within 1e-6 (measured 5e-8 and 4e-9).
+  check_transient.py schur FILE.prm EXECUTABLE WORKDIR
+      FILE.prm is a Newmark run with Linear solver = direct, which solves
+      its active sets through the contact Schur complement on one kept
+      factorisation (Contact Schur complement = auto). It is run again
+      with the Schur complement off (each active set condensed and
+      factorised): energy.csv, stiffness.csv and pin_forces.csv must agree
+      to 1e-9 (relative; measured 1e-12; the penetration left, rounding in
+      both, excepted), the first run must have
+      factorised once in all (preconditioner_setups) and the second once
+      per active-set iteration, and the first passes the checks of
+      "motion". A third run keeps 20 columns of the inverse (Contact Schur
+      complement columns), so that they are dropped and computed again
+      over and over: it must report evictions and agree the same way.
 """
 import csv
 import math
@@ -216,6 +229,53 @@ def cycle(prm, exe, work):
     return failures
 
 
+def schur(prm, exe, work):
+    os.makedirs(work, exist_ok=True)
+    text = open(prm).read()
+    open(f"{work}/schur.prm", "w").write(variant(text, "schur"))
+    condensed = text.replace("subsection Solver",
+                             "subsection Solver\n  set Contact Schur complement = false")
+    open(f"{work}/condensed.prm", "w").write(variant(condensed, "condensed"))
+    # Few columns kept: they are dropped and computed again all the time.
+    evicting = text.replace("subsection Solver",
+                            "subsection Solver\n  set Contact Schur complement columns = 20")
+    open(f"{work}/evicting.prm", "w").write(variant(evicting, "evicting"))
+    run(exe, "schur.prm", work)
+    run(exe, "condensed.prm", work)
+    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
+    debug = subprocess.run(["mpirun", *flags, "--oversubscribe", "-np", "2", exe, "evicting.prm"],
+                           cwd=work, capture_output=True, text=True,
+                           env={**os.environ, "CYCLOID_DEBUG": "1"})
+    failures = []
+    if debug.returncode != 0:
+        print(debug.stdout, debug.stderr)
+        failures.append("evicting.prm failed")
+    evictions = [int(n) for n in re.findall(r"(\d+) evictions", debug.stderr)]
+    print(f"with 20 columns kept: {max(evictions, default=0)} evictions")
+    if max(evictions, default=0) == 0:
+        failures.append("the run keeping 20 columns dropped none: eviction is not exercised")
+    for name in ("schur", "evicting"):
+        for f in ("energy.csv", "stiffness.csv", "pin_forces.csv"):
+            a, b = rows(f"{work}/{name}/{f}"), rows(f"{work}/condensed/{f}")
+            # The penetration left is rounding in both (1e-16 um;
+            # motion_checks bounds it), so it is not compared.
+            bad = same(a, b, skip=("wall_s", "peak_memory_MB", "preconditioner_setups",
+                                   "max_penetration_um"), tol=1e-9)
+            print(f"{f}: {len(a)} rows, {name} vs condensed: {'equal to 1e-9' if not bad else bad[:3]}")
+            failures += [f"{name} {f}: {x}" for x in bad[:5]]
+    st, sc = rows(f"{work}/schur/stiffness.csv"), rows(f"{work}/condensed/stiffness.csv")
+    fs = [int(r["preconditioner_setups"]) for r in st]
+    fc = [int(r["preconditioner_setups"]) for r in sc]
+    its = [int(r["active_set_iterations"]) for r in sc]
+    print(f"factorisations per step: Schur complement {fs}, condensed {fc} (active-set iterations {its})")
+    if sum(fs) != 1 or fs[0] != 1:
+        failures.append(f"the Schur complement run factorised {fs} times per step, not once in all")
+    if fc != its:
+        failures.append(f"the condensed run factorised {fc} times per step, not once per set {its}")
+    failures += motion_checks(text, f"{work}/schur")
+    return failures
+
+
 def slow(prm, exe, work):
     os.makedirs(work, exist_ok=True)
     text = open(prm).read()
@@ -259,6 +319,7 @@ def slow(prm, exe, work):
 
 if __name__ == "__main__":
     mode, prm, exe, work = sys.argv[1:5]
-    failures = {"restart": restart, "slow": slow, "motion": motion, "cycle": cycle}[mode](os.path.abspath(prm), exe, work)
+    failures = {"restart": restart, "slow": slow, "motion": motion, "cycle": cycle,
+                "schur": schur}[mode](os.path.abspath(prm), exe, work)
     print("\n".join(failures) if failures else "all checks passed")
     sys.exit(1 if failures else 0)

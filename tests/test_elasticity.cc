@@ -392,3 +392,79 @@ TEST(Elasticity, CholeskySolvesAndRefusesWhatItCannot)
   ASSERT_TRUE(cholesky.factorize(A)) << cholesky.failure();
   EXPECT_LT(cholesky_error(cholesky, A), 1e-13);
 }
+
+
+
+TEST(Elasticity, CholeskyKeepsItsFactorAndGivesEntriesOfTheInverse)
+{
+  // What contact::ContactSchur builds on, on 1 and 2 ranks: the same
+  // matrix again keeps the factorisation, any changed value refactorises;
+  // inverse_entries() are A^{-1}'s (A A^{-1} = I at the columns asked for,
+  // symmetric); several right-hand sides in one solve give the single
+  // solves' answers.
+  const unsigned int                     n    = 301;
+  const auto                             comm = MPI_COMM_WORLD;
+  dealii::TrilinosWrappers::SparseMatrix A;
+  elasticity::SparseCholesky             cholesky(comm);
+  fill_test_matrix(A, n, 1.);
+  ASSERT_TRUE(cholesky.factorize(A)) << cholesky.failure();
+  EXPECT_FALSE(cholesky.kept_factor());
+  ASSERT_TRUE(cholesky.factorize(A));
+  EXPECT_TRUE(cholesky.kept_factor());
+  EXPECT_EQ(cholesky.n_factorisations(), 1u);
+
+  // Columns across both ranks' rows, all rows.
+  const std::vector<dealii::types::global_dof_index> columns{
+    0, 7, 150, 299, 300};
+  std::vector<dealii::types::global_dof_index> rows(n);
+  for (unsigned int i = 0; i < n; ++i)
+    rows[i] = i;
+  const std::vector<double> inverse = cholesky.inverse_entries(columns, rows);
+  ASSERT_EQ(inverse.size(), n * columns.size());
+  const auto owned          = A.locally_owned_range_indices();
+  double     identity_error = 0, symmetry_error = 0;
+  for (unsigned int c = 0; c < columns.size(); ++c)
+    {
+      dealii::TrilinosWrappers::MPI::Vector z(owned, comm), az(z);
+      for (const auto i : owned)
+        z[i] = inverse[i * columns.size() + c];
+      z.compress(dealii::VectorOperation::insert);
+      A.vmult(az, z);
+      for (const auto i : owned)
+        identity_error =
+          std::max(identity_error,
+                   std::abs(az[i] - (i == columns[c] ? 1. : 0.)));
+      for (unsigned int d = 0; d < columns.size(); ++d)
+        symmetry_error =
+          std::max(symmetry_error,
+                   std::abs(inverse[columns[d] * columns.size() + c] -
+                            inverse[columns[c] * columns.size() + d]));
+    }
+  EXPECT_LT(dealii::Utilities::MPI::max(identity_error, comm), 1e-13);
+  EXPECT_LT(symmetry_error, 1e-15);
+
+  dealii::TrilinosWrappers::MPI::Vector b0(owned, comm), b1(b0), x0(b0), x1(b0),
+    y0(b0), y1(b0);
+  for (const auto i : owned)
+    {
+      b0[i] = std::sin(double(i));
+      b1[i] = std::cos(3. * i);
+    }
+  b0.compress(dealii::VectorOperation::insert);
+  b1.compress(dealii::VectorOperation::insert);
+  cholesky.solve(x0, b0);
+  cholesky.solve(x1, b1);
+  cholesky.solve({&y0, &y1}, {&b0, &b1});
+  y0 -= x0;
+  y1 -= x1;
+  EXPECT_LT(std::max(y0.linfty_norm(), y1.linfty_norm()), 1e-14);
+
+  // One value changed (the pattern the same): a new factorisation.
+  if (owned.is_element(n / 2))
+    A.set(n / 2, n / 2, 4.5);
+  A.compress(dealii::VectorOperation::insert);
+  ASSERT_TRUE(cholesky.factorize(A));
+  EXPECT_FALSE(cholesky.kept_factor());
+  EXPECT_EQ(cholesky.n_factorisations(), 2u);
+  EXPECT_LT(cholesky_error(cholesky, A), 1e-13);
+}

@@ -76,12 +76,14 @@ namespace cycloid
       const ConstraintFormulation<dim>  &formulation,
       const ContactSettings             &settings,
       const ContactSystem<dim>          &system,
-      dealii::TimerOutput               *timer)
+      dealii::TimerOutput               *timer,
+      ContactSchur<dim>                 *schur)
       : problem(problem)
       , formulation(formulation)
       , settings(settings)
       , system(system)
       , timer(timer)
+      , schur(schur)
       , comm(problem.dof_handler().get_triangulation().get_communicator())
       , verbose(std::getenv("CYCLOID_DEBUG") &&
                 dealii::Utilities::MPI::this_mpi_process(comm) == 0)
@@ -109,6 +111,7 @@ namespace cycloid
       // Set after a cycle: the union of its sets is being solved.
       bool cycle_union = false;
       warm_start(solution);
+      use_schur = schur != nullptr && begin_schur(state);
       for (unsigned int it = 0;; ++it)
         {
           AssertThrow(it < settings.max_iterations,
@@ -120,22 +123,34 @@ namespace cycloid
                         label + "."));
           clock.restart();
           const unsigned int builds = problem.n_preconditioner_builds();
+          if (!assembled && !use_schur)
+            assemble(solution.active);
           if (!assembled)
-            {
-              assemble(solution.active);
-              ++state.iterations;
-            }
+            ++state.iterations;
           const double t_assemble = clock.wall_time();
           const double m_assemble = resident_MB();
-          setup_preconditioner();
+          if (!use_schur)
+            setup_preconditioner();
           const double t_preconditioner = clock.wall_time();
           const double m_preconditioner = resident_MB();
-          // A cycle's union is solved 100 times tighter: the nodes that
-          // came and went carry forces at the level of CG's residual.
-          solve_linear_systems((tight ? settings.solver_tolerance :
-                                        settings.inner_tolerance) *
-                                 (cycle_union ? cycle_tightening : 1.),
-                               state);
+          if (use_schur)
+            {
+              // Exact solves: a set solved once needs no second look.
+              const OptionalScope scope(timer, "contact: linear solves");
+              if (!assembled)
+                schur->solve_set(problem,
+                                 contact_lines(solution.active),
+                                 u0,
+                                 u1);
+              n0 = n1 = 0;
+            }
+          else
+            // A cycle's union is solved 100 times tighter: the nodes that
+            // came and went carry forces at the level of CG's residual.
+            solve_linear_systems((tight ? settings.solver_tolerance :
+                                          settings.inner_tolerance) *
+                                   (cycle_union ? cycle_tightening : 1.),
+                                 state);
           state.preconditioner_setups +=
             problem.n_preconditioner_builds() - builds;
           if (verbose)
@@ -146,6 +161,15 @@ namespace cycloid
                       << " s, solves " << clock.wall_time() - t_preconditioner
                       << " s / " << n0 << " + " << n1 << " it, "
                       << problem.n_preconditioner_builds() - builds << " builds"
+                      << (use_schur ?
+                            ", Schur complement: " +
+                              std::to_string(schur->n_columns()) +
+                              " columns kept, " +
+                              std::to_string(schur->n_new_columns()) +
+                              " new, " +
+                              std::to_string(schur->n_evictions_so_far()) +
+                              " evictions" :
+                            std::string())
                       << "; rank 0 resident after assembly " << m_assemble
                       << " MB, preconditioner " << m_preconditioner
                       << " MB, solves " << resident_MB() << " MB, heap in use "
@@ -305,6 +329,42 @@ namespace cycloid
       problem.setup_constraints(
         {constraint_set(active, true, 0.), constraint_set(active, false, 1.)});
       problem.assemble_sets({});
+    }
+
+
+
+    template <int dim>
+    std::function<void(dealii::AffineConstraints<double> &)>
+    ActiveSetSolver<dim>::contact_lines(
+      const std::set<unsigned int> &active) const
+    {
+      return [this, &active](dealii::AffineConstraints<double> &c) {
+        for (const unsigned int i : active)
+          formulation.constrain(c, system.slaves[i], true);
+      };
+    }
+
+
+
+    template <int dim>
+    bool
+    ActiveSetSolver<dim>::begin_schur(ContactState &state)
+    {
+      const std::set<unsigned int> none;
+      const unsigned int           factorised = schur->n_factorisations();
+      bool                         taken      = false;
+      {
+        const OptionalScope scope(timer, "contact: constraints and assembly");
+        taken = schur->begin_state(problem,
+                                   {constraint_set(none, true, 0.),
+                                    constraint_set(none, false, 1.)});
+      }
+      state.preconditioner_setups += schur->n_factorisations() - factorised;
+      if (!taken && verbose)
+        std::cerr << "  [active set] the operator is not SPD: no Schur "
+                     "complement, each set condensed"
+                  << std::endl;
+      return taken;
     }
 
 
@@ -559,8 +619,16 @@ namespace cycloid
                                      comm);
         solution.displacement = a;
       }
-      const auto [r, f] = problem.residual_norms(solution.displacement, 0);
-      state.residual    = f > 0 ? r / f : 0.;
+      // Through the Schur complement, the problem's constraints are the
+      // supports' alone; the residual is that of the whole set.
+      const auto [r, f] =
+        use_schur ?
+          problem.residual_norms(solution.displacement,
+                                 problem.make_constraints(
+                                   constraint_set(solution.active, true, 0.)),
+                                 true) :
+          problem.residual_norms(solution.displacement, 0);
+      state.residual = f > 0 ? r / f : 0.;
       AssertThrow(state.residual <= settings.residual_tolerance,
                   dealii::ExcMessage(
                     "contact: the converged active set leaves an equilibrium "

@@ -355,8 +355,12 @@ namespace cycloid
     {
       const ContactSystem<dim> system{
         slaves, ties, fixed, load, &force_cells()};
+      if (settings.schur_complement && !schur &&
+          settings.solver == elasticity::LinearSolver::direct)
+        schur = std::make_unique<ContactSchur<dim>>(
+          problem->dof_handler().get_communicator(), settings.schur_columns);
       ActiveSetSolver<dim> solver(
-        *problem, *formulation, settings, system, timer);
+        *problem, *formulation, settings, system, timer, schur.get());
       return solver.solve(load_control, value, label, solution);
     }
 

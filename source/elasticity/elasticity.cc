@@ -58,6 +58,7 @@ namespace cycloid
     LinearElasticity<dim>::distribute_dofs()
     {
       dofs.distribute_dofs(fe);
+      ++distributions;
       locally_owned = dofs.locally_owned_dofs();
       blocked       = -1;
       update_relevant_dofs();
@@ -84,22 +85,65 @@ namespace cycloid
       constraint_sets.clear();
       constraint_sets.resize(sets.size());
       for (unsigned int k = 0; k < sets.size(); ++k)
-        {
-          auto &c = constraint_sets[k];
-          c.reinit(locally_relevant);
-          dealii::DoFTools::make_hanging_node_constraints(dofs, c);
-          sets[k](c);
-          c.close();
-        }
+        constraint_sets[k] = make_constraints(sets[k]);
 
       if (!pattern_fixed)
-        build_exact_pattern();
+        {
+          // The same lines and entries as the pattern was built for (e.g.
+          // the supports alone, time step after time step): it stays.
+          const std::size_t digest = structure_digest(constraint_sets[0]);
+          const bool        same =
+            dealii::Utilities::MPI::min(static_cast<int>(
+                                          digest == pattern_digest &&
+                                          system_matrix.m() == dofs.n_dofs()),
+                                        comm) == 1;
+          if (!same)
+            build_exact_pattern();
+          pattern_digest = digest;
+        }
       rhs_sets.resize(sets.size());
       for (auto &rhs : rhs_sets)
         rhs.reinit(locally_owned, comm);
       locally_relevant_solution.reinit(locally_owned, locally_relevant, comm);
       many_solver.reset();
       many_problem.reset();
+    }
+
+
+
+    template <int dim>
+    std::size_t
+    LinearElasticity<dim>::structure_digest(
+      const dealii::AffineConstraints<double> &c)
+    {
+      // FNV-1a over each line's DoF and its entries' DoFs.
+      std::size_t h   = 1469598103934665603ull;
+      const auto  mix = [&h](const dealii::types::global_dof_index i) {
+        h = (h ^ static_cast<std::size_t>(i)) * 1099511628211ull;
+      };
+      for (const auto &line : c.get_lines())
+        {
+          mix(line.index);
+          mix(line.entries.size());
+          for (const auto &entry : line.entries)
+            mix(entry.first);
+        }
+      return h;
+    }
+
+
+
+    template <int dim>
+    dealii::AffineConstraints<double>
+    LinearElasticity<dim>::make_constraints(
+      const std::function<void(dealii::AffineConstraints<double> &)> &set) const
+    {
+      dealii::AffineConstraints<double> c;
+      c.reinit(locally_relevant);
+      dealii::DoFTools::make_hanging_node_constraints(dofs, c);
+      set(c);
+      c.close();
+      return c;
     }
 
 
@@ -1142,15 +1186,27 @@ namespace cycloid
       const dealii::TrilinosWrappers::MPI::Vector &u,
       const unsigned int                           k) const
     {
+      return residual_norms(u, constraint_sets.at(k), k == 0);
+    }
+
+
+
+    template <int dim>
+    std::pair<double, double>
+    LinearElasticity<dim>::residual_norms(
+      const dealii::TrilinosWrappers::MPI::Vector &u,
+      const dealii::AffineConstraints<double>     &constraints,
+      const bool                                   with_load) const
+    {
       dealii::TrilinosWrappers::MPI::Vector r(locally_owned, comm),
         f(locally_owned, comm);
-      assemble_internal_forces(u, f, &constraint_sets.at(k), &r, true, k == 0);
+      assemble_internal_forces(u, f, &constraints, &r, true, with_load);
       // Reference: the forces of the operator alone (A u); with a history
       // load, A u - b vanishes away from contacts and supports (a free
       // flight), so it cannot be the reference.
       const bool history =
         dynamic.mass_load.size() > 0 || dynamic.stiffness_load.size() > 0;
-      if (history && k == 0)
+      if (history && with_load)
         {
           dealii::TrilinosWrappers::MPI::Vector g(locally_owned, comm);
           assemble_internal_forces(u, g, nullptr, nullptr, true, false);

@@ -107,12 +107,58 @@ namespace cycloid
     SparseCholesky::factorize(
       const dealii::TrilinosWrappers::SparseMatrix &matrix)
     {
+      // A time step with a kept active-set condensation (contact::
+      // ContactSchur) assembles the same operator again: the digest finds
+      // that, at the cost of one pass over the local rows.
+      const std::size_t digest = fingerprint(matrix);
+      const bool        same =
+        dealii::Utilities::MPI::min(static_cast<int>(digest == factored_digest),
+                                    comm) == 1;
+      kept = same && why.empty() && !owned_counts.empty();
+      if (kept)
+        return true;
       why = gather_lower(matrix);
       if (why.empty() && cholmod)
         why = factorize_on_root();
-      why    = dealii::Utilities::MPI::broadcast(comm, why, 0);
-      reused = dealii::Utilities::MPI::broadcast(comm, reused, 0);
+      why             = dealii::Utilities::MPI::broadcast(comm, why, 0);
+      reused          = dealii::Utilities::MPI::broadcast(comm, reused, 0);
+      factored_digest = digest;
+      ++n_factors;
+      if (!why.empty())
+        owned_counts.clear();
       return why.empty();
+    }
+
+
+
+    std::size_t
+    SparseCholesky::fingerprint(
+      const dealii::TrilinosWrappers::SparseMatrix &matrix)
+    {
+      // FNV-1a over the bytes of every row's global indices and values.
+      const Epetra_CrsMatrix &A     = matrix.trilinos_matrix();
+      std::size_t             h     = 1469598103934665603ull;
+      const auto              bytes = [&h](const void *p, const std::size_t n) {
+        const unsigned char *c = static_cast<const unsigned char *>(p);
+        for (std::size_t k = 0; k < n; ++k)
+          h = (h ^ c[k]) * 1099511628211ull;
+      };
+      for (int r = 0; r < A.NumMyRows(); ++r)
+        {
+          int     length = 0;
+          double *v      = nullptr;
+          int    *c      = nullptr;
+          A.ExtractMyRowView(r, length, v, c);
+          const int row = A.GRID(r);
+          bytes(&row, sizeof(row));
+          for (int k = 0; k < length; ++k)
+            {
+              const int column = A.GCID(c[k]);
+              bytes(&column, sizeof(column));
+              bytes(&v[k], sizeof(double));
+            }
+        }
+      return h;
     }
 
 
@@ -348,54 +394,147 @@ namespace cycloid
     SparseCholesky::solve(dealii::TrilinosWrappers::MPI::Vector       &x,
                           const dealii::TrilinosWrappers::MPI::Vector &b) const
     {
+      solve(std::vector<dealii::TrilinosWrappers::MPI::Vector *>{&x},
+            std::vector<const dealii::TrilinosWrappers::MPI::Vector *>{&b});
+    }
+
+
+
+    void
+    SparseCholesky::solve(
+      const std::vector<dealii::TrilinosWrappers::MPI::Vector *>       &x,
+      const std::vector<const dealii::TrilinosWrappers::MPI::Vector *> &b) const
+    {
       AssertThrow(why.empty() && !owned_counts.empty(),
                   dealii::ExcMessage("SparseCholesky: no factorisation"));
-      const Epetra_MultiVector &bv = b.trilinos_vector();
-      AssertThrow(
-        bv.MyLength() ==
-          owned_counts[dealii::Utilities::MPI::this_mpi_process(comm)],
-        dealii::ExcMessage(
-          "SparseCholesky: the vector's rows are not the matrix's"));
-      const std::vector<double> local(bv[0], bv[0] + bv.MyLength());
-      std::vector<double>       gathered = gather_to_root(local, comm);
+      AssertDimension(x.size(), b.size());
+      const int my_rows =
+        owned_counts[dealii::Utilities::MPI::this_mpi_process(comm)];
+      // All right-hand sides in one gather, column after column.
+      std::vector<double> local;
+      for (const auto *v : b)
+        {
+          const Epetra_MultiVector &bv = v->trilinos_vector();
+          AssertThrow(bv.MyLength() == my_rows,
+                      dealii::ExcMessage(
+                        "SparseCholesky: the vector's rows are not the "
+                        "matrix's"));
+          local.insert(local.end(), bv[0], bv[0] + my_rows);
+        }
+      const std::vector<double> gathered = gather_to_root(local, comm);
+      const std::size_t         k        = b.size();
+      const std::size_t         n        = gathered_rows.size();
       std::vector<double>       solution(gathered.size());
+      // Rank r's block holds its rows of every column in turn.
+      std::vector<std::size_t> offsets(owned_counts.size() + 1, 0);
+      for (unsigned int r = 0; r < owned_counts.size(); ++r)
+        offsets[r + 1] = offsets[r] + owned_counts[r];
+      const auto at = [&](const std::size_t column, const std::size_t g) {
+        // Gathered row g belongs to the rank whose range holds it.
+        const auto r = std::upper_bound(offsets.begin(), offsets.end(), g) -
+                       offsets.begin() - 1;
+        return offsets[r] * k + column * owned_counts[r] + (g - offsets[r]);
+      };
       if (cholmod)
         {
           // Into the matrix's numbering, solve, and back into the gathered
           // order.
-          std::vector<double> ordered(gathered.size());
-          for (unsigned int k = 0; k < gathered.size(); ++k)
-            ordered[gathered_rows[k]] = gathered[k];
-          cholmod_common &c = cholmod->common;
+          std::vector<double> ordered(n * k);
+          for (std::size_t c = 0; c < k; ++c)
+            for (std::size_t g = 0; g < n; ++g)
+              ordered[c * n + gathered_rows[g]] = gathered[at(c, g)];
+          cholmod_common &cc = cholmod->common;
           cholmod_dense   B{};
-          B.nrow           = ordered.size();
-          B.ncol           = 1;
-          B.nzmax          = B.nrow;
-          B.d              = B.nrow;
+          B.nrow           = n;
+          B.ncol           = k;
+          B.nzmax          = n * k;
+          B.d              = n;
           B.x              = ordered.data();
           B.xtype          = CHOLMOD_REAL;
           B.dtype          = CHOLMOD_DOUBLE;
-          cholmod_dense *X = cholmod_solve(CHOLMOD_A, cholmod->factor, &B, &c);
+          cholmod_dense *X = cholmod_solve(CHOLMOD_A, cholmod->factor, &B, &cc);
           AssertThrow(X != nullptr,
                       dealii::ExcMessage("SparseCholesky: the solve failed"));
           const double *xs = static_cast<const double *>(X->x);
-          for (unsigned int k = 0; k < gathered.size(); ++k)
-            solution[k] = xs[gathered_rows[k]];
-          cholmod_free_dense(&X, &c);
+          for (std::size_t c = 0; c < k; ++c)
+            for (std::size_t g = 0; g < n; ++g)
+              solution[at(c, g)] = xs[c * n + gathered_rows[g]];
+          cholmod_free_dense(&X, &cc);
         }
-      std::vector<int> offsets(owned_counts.size() + 1, 0);
+      std::vector<int> counts(owned_counts.size()), displs(owned_counts.size());
       for (unsigned int r = 0; r < owned_counts.size(); ++r)
-        offsets[r + 1] = offsets[r] + owned_counts[r];
-      Epetra_MultiVector &xv = x.trilinos_vector();
+        {
+          counts[r] = owned_counts[r] * k;
+          displs[r] = offsets[r] * k;
+        }
+      std::vector<double> mine(my_rows * k);
       MPI_Scatterv(solution.data(),
-                   owned_counts.data(),
-                   offsets.data(),
+                   counts.data(),
+                   displs.data(),
                    MPI_DOUBLE,
-                   xv[0],
-                   xv.MyLength(),
+                   mine.data(),
+                   mine.size(),
                    MPI_DOUBLE,
                    0,
                    comm);
+      for (std::size_t c = 0; c < k; ++c)
+        {
+          Epetra_MultiVector &xv = x[c]->trilinos_vector();
+          std::copy(mine.begin() + c * my_rows,
+                    mine.begin() + (c + 1) * my_rows,
+                    xv[0]);
+        }
+    }
+
+
+
+    std::vector<double>
+    SparseCholesky::inverse_entries(
+      const std::vector<dealii::types::global_dof_index> &columns,
+      const std::vector<dealii::types::global_dof_index> &rows) const
+    {
+      AssertThrow(why.empty() && !owned_counts.empty(),
+                  dealii::ExcMessage("SparseCholesky: no factorisation"));
+      const std::size_t   nr = rows.size(), nc = columns.size();
+      std::vector<double> entries(nr * nc, 0.);
+      if (cholmod)
+        {
+          cholmod_common     &c     = cholmod->common;
+          const std::size_t   n     = cholmod->factor->n;
+          const std::size_t   block = 4;
+          std::vector<double> units(n * block);
+          for (std::size_t first = 0; first < nc; first += block)
+            {
+              const std::size_t k = std::min(block, nc - first);
+              std::fill(units.begin(), units.end(), 0.);
+              for (std::size_t j = 0; j < k; ++j)
+                {
+                  AssertThrow(columns[first + j] < n,
+                              dealii::ExcIndexRange(columns[first + j], 0, n));
+                  units[j * n + columns[first + j]] = 1.;
+                }
+              cholmod_dense B{};
+              B.nrow  = n;
+              B.ncol  = k;
+              B.nzmax = n * k;
+              B.d     = n;
+              B.x     = units.data();
+              B.xtype = CHOLMOD_REAL;
+              B.dtype = CHOLMOD_DOUBLE;
+              cholmod_dense *X =
+                cholmod_solve(CHOLMOD_A, cholmod->factor, &B, &c);
+              AssertThrow(X != nullptr,
+                          dealii::ExcMessage(
+                            "SparseCholesky: the solve failed"));
+              const double *xs = static_cast<const double *>(X->x);
+              for (std::size_t j = 0; j < k; ++j)
+                for (std::size_t i = 0; i < nr; ++i)
+                  entries[i * nc + first + j] = xs[j * n + rows[i]];
+              cholmod_free_dense(&X, &c);
+            }
+        }
+      MPI_Bcast(entries.data(), entries.size(), MPI_DOUBLE, 0, comm);
+      return entries;
     }
   } // namespace elasticity
 } // namespace cycloid

@@ -19,9 +19,9 @@ namespace cycloid
     namespace
     {
       /** The settings after the checks a transient run needs before it
-       * builds anything. */
+       * builds anything, with what the scheme tells the scene. */
       template <typename Settings>
-      const Settings &
+      Settings
       checked(const Settings &s)
       {
         AssertThrow(s.run.stage.mesh.adaptive_cycles == 0,
@@ -35,7 +35,12 @@ namespace cycloid
                       "Loading/Rotation under rotation control) and keep "
                       "Loading/Torque cycle = false; the ramp is set by "
                       "Transient/Ramp time."));
-        return s;
+        Settings c = s;
+        // Newmark and generalized-alpha solve every step on one operator;
+        // the contact-stabilised scheme alternates it with a projection.
+        c.run.stage.one_operator =
+          s.transient.scheme != dynamics::Scheme::contact_stabilised;
+        return c;
       }
 
       /** The time scheme's settings. */
@@ -73,7 +78,7 @@ namespace cycloid
              settings.run.loading.crank_angle(),
              settings.run.loading.load_values().front())
       , scene(
-          settings.run.stage,
+          this->settings.run.stage,
           [&] {
             auto request =
               mesh_request(settings.run, settings.run.loading.crank_angle());

@@ -194,6 +194,8 @@ namespace cycloid
       cs.residual_tolerance   = c.residual_tolerance;
       cs.formulation          = c.formulation;
       cs.solver               = c.linear_solver;
+      cs.schur_complement     = c.use_schur_complement(settings.one_operator);
+      cs.schur_columns        = c.schur_columns;
       contact                 = std::make_unique<contact::ContactProblem<dim>>(
         tria, settings.mesh.degree, materials, cs);
       // Every run times the active set's stages (assembly, preconditioner,

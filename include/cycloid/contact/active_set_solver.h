@@ -8,6 +8,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <cycloid/contact/constraint_formulation.h>
+#include <cycloid/contact/contact_schur.h>
 #include <cycloid/contact/contact_types.h>
 #include <cycloid/elasticity/elasticity.h>
 
@@ -84,12 +85,16 @@ namespace cycloid
     public:
       /** Solve on @p problem (its DoFs distributed) for @p system,
        * constrained as @p formulation says; all held by reference.
-       * @p timer may be null (nothing timed). */
+       * @p timer may be null (nothing timed). With @p schur, each set is
+       * solved through the Schur complement of its contact rows on the
+       * operator that @p schur keeps factorised (ContactSchur) instead of
+       * a matrix condensed and factorised per set. */
       ActiveSetSolver(elasticity::LinearElasticity<dim> &problem,
                       const ConstraintFormulation<dim>  &formulation,
                       const ContactSettings             &settings,
                       const ContactSystem<dim>          &system,
-                      dealii::TimerOutput               *timer);
+                      dealii::TimerOutput               *timer,
+                      ContactSchur<dim>                 *schur = nullptr);
 
       /**
        * Iterate from the active set in @p solution until it repeats, for
@@ -116,6 +121,16 @@ namespace cycloid
       /** Constraints, matrix and both right-hand sides for @p active. */
       void
       assemble(const std::set<unsigned int> &active);
+
+      /** The contact lines of the nodes of @p active (with their gaps). */
+      std::function<void(dealii::AffineConstraints<double> &)>
+      contact_lines(const std::set<unsigned int> &active) const;
+
+      /** Hand the state to schur (assembly and factorisation of the
+       * supports alone, the solutions without contact); false if it
+       * cannot take it (then the state is condensed per set). */
+      bool
+      begin_schur(ContactState &state);
 
       /** Build the preconditioner of the new matrix, or keep the one
        * LinearElasticity::setup_preconditioner() keeps. */
@@ -233,7 +248,11 @@ namespace cycloid
       const ContactSettings             &settings;
       const ContactSystem<dim>           system;
       dealii::TimerOutput *const         timer;
-      const MPI_Comm                     comm;
+      /** The kept factorisation, or null (see the constructor). */
+      ContactSchur<dim> *const schur;
+      /** Whether this state's sets go through schur. */
+      bool           use_schur = false;
+      const MPI_Comm comm;
       /** Print each iteration to stderr (CYCLOID_DEBUG set, rank 0). */
       const bool verbose;
 

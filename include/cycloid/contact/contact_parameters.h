@@ -7,6 +7,7 @@
 #include <cycloid/elasticity/elasticity.h>
 
 #include <algorithm>
+#include <optional>
 #include <string>
 
 namespace cycloid
@@ -46,6 +47,25 @@ namespace cycloid
       /** Keep the pattern and the AMG hierarchy over active sets, states
        * and time steps (`Preconditioner reuse`). */
       bool reuse_preconditioner = false;
+      /** `Contact Schur complement`: true, false, or automatic (absent:
+       * auto). */
+      std::optional<bool> schur_complement;
+      /** `Contact Schur complement columns`. */
+      unsigned int schur_columns = 4000;
+
+      /** Whether the contact rows go through their Schur complement on a
+       * kept factorisation (contact::ContactSchur): as set, or under auto
+       * when the solver is direct and the run solves its states on one
+       * operator (@p one_operator: a time step of Newmark or
+       * generalized-alpha at a fixed step, where one factorisation serves
+       * the whole run). */
+      bool
+      use_schur_complement(const bool one_operator) const
+      {
+        if (linear_solver != elasticity::LinearSolver::direct)
+          return false;
+        return schur_complement.value_or(one_operator);
+      }
 
       /** The inner tolerance of a scene of dimension @p dim: auto is
        * 1e-6 in 3D, where a state's CG iterations are its cost (the 3D

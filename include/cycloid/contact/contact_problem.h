@@ -9,6 +9,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <cycloid/contact/constraint_formulation.h>
+#include <cycloid/contact/contact_schur.h>
 #include <cycloid/contact/contact_types.h>
 #include <cycloid/contact/surface_search.h>
 #include <cycloid/elasticity/elasticity.h>
@@ -342,6 +343,9 @@ namespace cycloid
       ContactSolution<dim> solution;
       /** Timer of the solver's stages; null: none. */
       dealii::TimerOutput *timer = nullptr;
+      /** The factorisation kept across states
+       * (ContactSettings::schur_complement; null: none). */
+      std::unique_ptr<ContactSchur<dim>> schur;
       /** pattern_signature() of the fixed pattern. */
       std::vector<dealii::types::global_dof_index> signature;
       /** The DoFs of force_cells() (sorted; empty: not built on this

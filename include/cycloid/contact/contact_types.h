@@ -161,6 +161,13 @@ namespace cycloid
       /** Largest accepted relative equilibrium residual |C^T f_int| /
        * |f_int| of a converged state. */
       double residual_tolerance = 1e-6;
+      /** With the direct solver: keep one factorisation of the operator
+       * with its supports over the sets, states and time steps, and solve
+       * each set through the Schur complement of its contact rows
+       * (ContactSchur); false: condense and factorise each set. */
+      bool schur_complement = false;
+      /** The most columns of the inverse the Schur complement keeps. */
+      unsigned int schur_columns = 4000;
     };
 
     /** @brief Result of one load state. */

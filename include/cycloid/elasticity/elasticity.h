@@ -312,6 +312,54 @@ namespace cycloid
       residual_norms(const dealii::TrilinosWrappers::MPI::Vector &u,
                      const unsigned int                           k) const;
 
+      /**
+       * The equilibrium residual of residual_norms(), condensed with
+       * @p constraints (e.g. from make_constraints()) instead of a set of
+       * setup_constraints(), with or without the history load
+       * (@p with_load: the first set's right-hand side).
+       */
+      std::pair<double, double>
+      residual_norms(const dealii::TrilinosWrappers::MPI::Vector &u,
+                     const dealii::AffineConstraints<double>     &constraints,
+                     const bool with_load) const;
+
+      /** The closed constraints that setup_constraints() makes of @p set
+       * (on the locally relevant DoFs, hanging nodes first), without
+       * touching the matrix or the sets. */
+      dealii::AffineConstraints<double>
+      make_constraints(
+        const std::function<void(dealii::AffineConstraints<double> &)> &set)
+        const;
+
+      /** The matrix of the last assemble_sets() (constraint set 0). */
+      const dealii::TrilinosWrappers::SparseMatrix &
+      matrix() const
+      {
+        return system_matrix;
+      }
+
+      /** The right-hand side of constraint set @p k (owned entries). */
+      const dealii::TrilinosWrappers::MPI::Vector &
+      right_hand_side(const unsigned int k) const
+      {
+        return rhs_sets.at(k);
+      }
+
+      /** Constraint set @p k of the last setup_constraints(). */
+      const dealii::AffineConstraints<double> &
+      constraint_set(const unsigned int k) const
+      {
+        return constraint_sets.at(k);
+      }
+
+      /** How many times the DoFs were distributed: a change means that
+       * every DoF-indexed quantity kept from before is void. */
+      unsigned int
+      n_distributions() const
+      {
+        return distributions;
+      }
+
       /** Hanging-node constraints of every DoF of the mesh (not only the
        * locally relevant ones: on a shared triangulation every rank sees
        * every cell). */
@@ -491,6 +539,10 @@ namespace cycloid
       mutable int blocked = -1;
       /** Preconditioners built so far. */
       unsigned int n_builds = 0;
+      /** See n_distributions(). */
+      unsigned int distributions = 0;
+      /** structure_digest() of the set the exact pattern was built for. */
+      std::size_t pattern_digest = 0;
       /** Jacobi preconditioner of a mass operator (stiffness factor 0). */
       dealii::TrilinosWrappers::PreconditionJacobi jacobi;
       /** Whether jacobi matches the current matrix. */
@@ -508,6 +560,11 @@ namespace cycloid
       /** Reinitialise the matrix with the pattern of constraint set 0. */
       void
       build_exact_pattern();
+
+      /** A digest of which DoFs @p c constrains onto which (not the
+       * weights): the pattern it condenses the matrix into. */
+      static std::size_t
+      structure_digest(const dealii::AffineConstraints<double> &c);
 
       /** Distribute @p dsp over the ranks and reinitialise the matrix with
        * it (no preconditioner matches it then). */

@@ -50,6 +50,10 @@ namespace cycloid
         analytic; ///< Subsection `Analytic` (warm start).
       /** The loads of solve() are rotations [rad], not torques [N m]. */
       bool rotation_control = false;
+      /** The run solves all its states on one operator (a transient run
+       * with a fixed step and one scheme matrix): auto's choice of the
+       * contact Schur complement (ContactParameters). */
+      bool one_operator = false;
       /** Where the solution fields go. */
       std::string output_directory = "output";
       /** Print nothing (the scenes of a phase group other than world rank
