@@ -123,9 +123,9 @@ namespace cycloid
           "every active set. auto: true in transient runs with Newmark or "
           "generalized-alpha (one operator for the whole run), false "
           "otherwise (a single state pays for its columns and saves "
-          "little). Measured on the 2D transient example: 0.76 s a step "
-          "instead of 1.8 (doc/transient.md). Ignored by the other linear "
-          "solvers.");
+          "little). Measured on the 2D transient example: 0.8-1.0 s a "
+          "step instead of 1.6-1.7 (doc/transient.md). Ignored by the other "
+          "linear solvers.");
         prm.declare_entry(
           "Contact Schur complement columns",
           "4000",

@@ -37,25 +37,32 @@ namespace cycloid
       AssertThrow(supports.size() == 2, dealii::ExcInternalError());
       if (problem.n_distributions() != distribution)
         {
-          // A new mesh: the supports of every DoF, for the rows.
+          // A new mesh: the supports of every DoF, for the rows. Those of
+          // the unit load, so that a row reaching a loaded DoF is seen.
           distribution = problem.n_distributions();
           open_held.clear();
           dealii::DoFTools::make_hanging_node_constraints(problem.dof_handler(),
                                                           open_held);
-          supports[0](open_held);
+          supports[1](open_held);
           held.copy_from(open_held);
           held.close();
           forget_columns();
         }
-      problem.setup_constraints(supports);
+      // The supports of the last state are still in place unless someone
+      // set up constraints since (they are the same for every state).
+      if (problem.n_constraint_setups() != installed)
+        {
+          problem.setup_constraints(supports);
+          installed = problem.n_constraint_setups();
+        }
+      else
+        problem.refresh_relevant_dofs();
       problem.assemble_sets({});
       if (!factor.factorize(problem.matrix()))
         return false;
       const bool same = factor.kept_factor() && x1.size() == problem.n_dofs();
       if (!same)
-        {
-          forget_columns();
-        }
+        forget_columns();
       // x1 (the unit load, no history) depends on the operator alone.
       const auto &owned = problem.locally_owned_dofs();
       for (unsigned int k = 0; k < (same ? 1 : 2); ++k)
@@ -250,17 +257,11 @@ namespace cycloid
 
 
     template <int dim>
-    void
-    ContactSchur<dim>::solve_set(
-      const elasticity::LinearElasticity<dim> &problem,
-      const Constraints                       &contact,
-      Vector                                  &u0,
-      Vector                                  &u1)
+    dealii::LAPACKFullMatrix<double>
+    ContactSchur<dim>::factorised_schur(const std::vector<Row> &rows) const
     {
-      const std::vector<Row> rows = contact_rows(contact);
-      add_columns(rows);
-      const std::size_t m = rows.size();
       // S = B A^{-1} B^T: every row has a few entries.
+      const std::size_t                                         m = rows.size();
       std::vector<std::vector<std::pair<unsigned int, double>>> kept(m);
       for (std::size_t r = 0; r < m; ++r)
         for (const auto &[j, w] : rows[r].entries)
@@ -275,12 +276,41 @@ namespace cycloid
                 v += wa * wb * inverse(a, b);
             S(r, s) = S(s, r) = v;
           }
-      const auto &owned = problem.locally_owned_dofs();
-      if (m > 0)
+      if (m == 0)
+        return S;
+      S.set_property(dealii::LAPACKSupport::symmetric);
+      try
         {
-          S.set_property(dealii::LAPACKSupport::symmetric);
           S.compute_cholesky_factorization();
         }
+      catch (const std::exception &)
+        {
+          // Each row owns its slave DoF, so S is positive definite unless
+          // two rows were dependent.
+          AssertThrow(false,
+                      dealii::ExcMessage(
+                        "contact: the Schur complement of the active set is "
+                        "not positive definite (dependent contact rows?); set "
+                        "Solver/Contact Schur complement = false."));
+        }
+      return S;
+    }
+
+
+
+    template <int dim>
+    void
+    ContactSchur<dim>::solve_set(
+      const elasticity::LinearElasticity<dim> &problem,
+      const Constraints                       &contact,
+      Vector                                  &u0,
+      Vector                                  &u1)
+    {
+      const std::vector<Row> rows = contact_rows(contact);
+      add_columns(rows);
+      const std::size_t                      m = rows.size();
+      const dealii::LAPACKFullMatrix<double> S = factorised_schur(rows);
+      const auto &owned                        = problem.locally_owned_dofs();
       // mu_k = S^{-1} (g_k - B x_k), then u_k = x_k + A^{-1} B^T mu_k; the
       // two back-substitutions in one solve.
       std::array<Vector, 2> load, correction;

@@ -59,6 +59,7 @@ namespace cycloid
     {
       dofs.distribute_dofs(fe);
       ++distributions;
+      ++constraint_setups;
       locally_owned = dofs.locally_owned_dofs();
       blocked       = -1;
       update_relevant_dofs();
@@ -80,6 +81,7 @@ namespace cycloid
         std::function<void(dealii::AffineConstraints<double> &)>> &sets)
     {
       AssertThrow(!sets.empty(), dealii::ExcInternalError());
+      ++constraint_setups;
       if (!pattern_fixed)
         update_relevant_dofs();
       constraint_sets.clear();
@@ -220,6 +222,7 @@ namespace cycloid
     LinearElasticity<dim>::set_pattern_superset(
       const std::function<void(dealii::AffineConstraints<double> &)> &superset)
     {
+      ++constraint_setups;
       release_matrix();
       update_relevant_dofs();
       // Unclosed, so that a chain of constraints stays visible: a set that
@@ -588,6 +591,63 @@ namespace cycloid
 
 
 
+    namespace
+    {
+      /**
+       * The nodal forces of one cell at its quadrature points: @p op from
+       * the operator's strains and (scaled) values, @p load from the history
+       * load's; both reset first. Either value array may be empty (no
+       * inertia, no mass load), the load's strains too.
+       */
+      template <int dim>
+      void
+      cell_forces(const dealii::FEValues<dim>                        &fe_values,
+                  const double                                        lambda,
+                  const double                                        mu,
+                  const std::vector<dealii::SymmetricTensor<2, dim>> &strain,
+                  const std::vector<dealii::Tensor<1, dim>>          &value,
+                  const std::vector<dealii::SymmetricTensor<2, dim>> &strain_w,
+                  const std::vector<dealii::Tensor<1, dim>>          &value_w,
+                  dealii::Vector<double>                             &op,
+                  dealii::Vector<double>                             &load)
+      {
+        const dealii::FEValuesExtractors::Vector disp(0);
+        const auto stress = [&](const dealii::SymmetricTensor<2, dim> &e) {
+          return lambda * dealii::trace(e) *
+                   dealii::unit_symmetric_tensor<dim>() +
+                 2 * mu * e;
+        };
+        op   = 0;
+        load = 0;
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          {
+            const auto   sigma   = stress(strain[q]);
+            const auto   sigma_w = strain_w.empty() ?
+                                     dealii::SymmetricTensor<2, dim>() :
+                                     stress(strain_w[q]);
+            const double JxW     = fe_values.JxW(q);
+            for (unsigned int i = 0; i < op.size(); ++i)
+              {
+                const auto grad = fe_values[disp].symmetric_gradient(i, q);
+                double     a    = sigma * grad;
+                double     b    = strain_w.empty() ? 0. : sigma_w * grad;
+                if (!value.empty() || !value_w.empty())
+                  {
+                    const auto v = fe_values[disp].value(i, q);
+                    if (!value.empty())
+                      a += value[q] * v;
+                    if (!value_w.empty())
+                      b += value_w[q] * v;
+                  }
+                op(i) += a * JxW;
+                load(i) += b * JxW;
+              }
+          }
+      }
+    } // namespace
+
+
+
     template <int dim>
     void
     LinearElasticity<dim>::assemble_internal_forces(
@@ -597,7 +657,8 @@ namespace cycloid
       dealii::TrilinosWrappers::MPI::Vector       *condensed,
       const bool                                   effective,
       const bool                                   with_load,
-      const CellList                              *cells) const
+      const CellList                              *cells,
+      dealii::TrilinosWrappers::MPI::Vector       *operator_only) const
     {
       const dealii::QGauss<dim>                    quadrature(fe.degree + 1);
       dealii::FEValues<dim>                        fe_values(*map,
@@ -607,20 +668,22 @@ namespace cycloid
                                         dealii::update_gradients |
                                         dealii::update_JxW_values);
       const unsigned int                           n = fe.n_dofs_per_cell();
-      dealii::Vector<double>                       cell_f(n);
+      dealii::Vector<double>                       cell_f(n), cell_load(n);
       std::vector<dealii::types::global_dof_index> indices(n);
       const dealii::FEValuesExtractors::Vector     disp(0);
-      std::vector<dealii::SymmetricTensor<2, dim>> strain(quadrature.size()),
-        strain_w(quadrature.size());
-      std::vector<dealii::Tensor<1, dim>> value(quadrature.size()),
-        value_w(quadrature.size());
-      // f = s_K K u + s_M M u - (M w_M + K w_K), or K u.
+      const std::size_t                            nq = quadrature.size();
+      // f = s_K K u + s_M M u - (M w_M + K w_K), or K u; the arrays of
+      // the terms that are not there stay empty.
       const double s_K = effective ? dynamic.stiffness : 1.;
       const double s_M = effective ? dynamic.mass : 0.;
       const bool   load_M =
         effective && with_load && dynamic.mass_load.size() > 0;
       const bool load_K =
         effective && with_load && dynamic.stiffness_load.size() > 0;
+      std::vector<dealii::SymmetricTensor<2, dim>> strain(nq),
+        strain_w(load_K ? nq : 0);
+      std::vector<dealii::Tensor<1, dim>> value(s_M != 0. ? nq : 0),
+        value_w(load_M ? nq : 0);
       CellList owned;
       if (!cells)
         for (const auto &cell : dofs.active_cell_iterators())
@@ -633,43 +696,36 @@ namespace cycloid
           const double rho        = density(cell->material_id());
           fe_values.reinit(cell);
           fe_values[disp].get_function_symmetric_gradients(u, strain);
+          for (auto &e : strain)
+            e *= s_K;
           if (load_K)
-            {
-              fe_values[disp].get_function_symmetric_gradients(
-                dynamic.stiffness_load, strain_w);
-              for (unsigned int q = 0; q < strain.size(); ++q)
-                strain[q] = s_K * strain[q] - strain_w[q];
-            }
-          else if (s_K != 1.)
-            for (auto &e : strain)
-              e *= s_K;
-          const bool inertia = s_M != 0. || load_M;
-          if (inertia)
+            fe_values[disp].get_function_symmetric_gradients(
+              dynamic.stiffness_load, strain_w);
+          if (!value.empty())
             {
               fe_values[disp].get_function_values(u, value);
-              if (load_M)
-                fe_values[disp].get_function_values(dynamic.mass_load, value_w);
-              for (unsigned int q = 0; q < value.size(); ++q)
-                value[q] =
-                  rho * (s_M * value[q] -
-                         (load_M ? value_w[q] : dealii::Tensor<1, dim>()));
+              for (auto &v : value)
+                v *= rho * s_M;
             }
-          cell_f = 0;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
+          if (load_M)
             {
-              const dealii::SymmetricTensor<2, dim> sigma =
-                lambda * dealii::trace(strain[q]) *
-                  dealii::unit_symmetric_tensor<dim>() +
-                2 * mu * strain[q];
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  double v = sigma * fe_values[disp].symmetric_gradient(i, q);
-                  if (inertia)
-                    v += value[q] * fe_values[disp].value(i, q);
-                  cell_f(i) += v * fe_values.JxW(q);
-                }
+              fe_values[disp].get_function_values(dynamic.mass_load, value_w);
+              for (auto &v : value_w)
+                v *= rho;
             }
+          cell_forces(fe_values,
+                      lambda,
+                      mu,
+                      strain,
+                      value,
+                      strain_w,
+                      value_w,
+                      cell_f,
+                      cell_load);
           cell->get_dof_indices(indices);
+          if (operator_only)
+            operator_only->add(indices, cell_f);
+          cell_f -= cell_load;
           f.add(indices, cell_f);
           if (condense)
             condense->distribute_local_to_global(cell_f, indices, *condensed);
@@ -677,6 +733,8 @@ namespace cycloid
       f.compress(dealii::VectorOperation::add);
       if (condensed)
         condensed->compress(dealii::VectorOperation::add);
+      if (operator_only)
+        operator_only->compress(dealii::VectorOperation::add);
     }
 
 
@@ -1200,18 +1258,22 @@ namespace cycloid
     {
       dealii::TrilinosWrappers::MPI::Vector r(locally_owned, comm),
         f(locally_owned, comm);
-      assemble_internal_forces(u, f, &constraints, &r, true, with_load);
-      // Reference: the forces of the operator alone (A u); with a history
-      // load, A u - b vanishes away from contacts and supports (a free
-      // flight), so it cannot be the reference.
-      const bool history =
-        dynamic.mass_load.size() > 0 || dynamic.stiffness_load.size() > 0;
-      if (history && with_load)
-        {
-          dealii::TrilinosWrappers::MPI::Vector g(locally_owned, comm);
-          assemble_internal_forces(u, g, nullptr, nullptr, true, false);
-          return {r.l2_norm(), std::max(f.l2_norm(), g.l2_norm())};
-        }
+      // Reference: the forces of the operator alone (A u) too; with a
+      // history load, A u - b vanishes away from contacts and supports (a
+      // free flight), so it cannot be the reference alone.
+      const bool history = with_load && (dynamic.mass_load.size() > 0 ||
+                                         dynamic.stiffness_load.size() > 0);
+      dealii::TrilinosWrappers::MPI::Vector g(locally_owned, comm);
+      assemble_internal_forces(u,
+                               f,
+                               &constraints,
+                               &r,
+                               true,
+                               with_load,
+                               nullptr,
+                               history ? &g : nullptr);
+      if (history)
+        return {r.l2_norm(), std::max(f.l2_norm(), g.l2_norm())};
       return {r.l2_norm(), f.l2_norm()};
     }
 

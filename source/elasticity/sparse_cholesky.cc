@@ -80,6 +80,28 @@ namespace cycloid
         ordered_fill = common.lnz;
       }
 
+      /** Overwrite the @p k columns of length n in @p columns (column
+       * after column) by A^{-1} times them. */
+      void
+      solve_in_place(std::vector<double> &columns, const std::size_t k)
+      {
+        const std::size_t n = factor->n;
+        cholmod_dense     B{};
+        B.nrow           = n;
+        B.ncol           = k;
+        B.nzmax          = n * k;
+        B.d              = n;
+        B.x              = columns.data();
+        B.xtype          = CHOLMOD_REAL;
+        B.dtype          = CHOLMOD_DOUBLE;
+        cholmod_dense *X = cholmod_solve(CHOLMOD_A, factor, &B, &common);
+        AssertThrow(X != nullptr,
+                    dealii::ExcMessage("SparseCholesky: the solve failed"));
+        const double *xs = static_cast<const double *>(X->x);
+        std::copy(xs, xs + n * k, columns.begin());
+        cholmod_free_dense(&X, &common);
+      }
+
       ~Cholmod()
       {
         if (factor != nullptr)
@@ -443,23 +465,10 @@ namespace cycloid
           for (std::size_t c = 0; c < k; ++c)
             for (std::size_t g = 0; g < n; ++g)
               ordered[c * n + gathered_rows[g]] = gathered[at(c, g)];
-          cholmod_common &cc = cholmod->common;
-          cholmod_dense   B{};
-          B.nrow           = n;
-          B.ncol           = k;
-          B.nzmax          = n * k;
-          B.d              = n;
-          B.x              = ordered.data();
-          B.xtype          = CHOLMOD_REAL;
-          B.dtype          = CHOLMOD_DOUBLE;
-          cholmod_dense *X = cholmod_solve(CHOLMOD_A, cholmod->factor, &B, &cc);
-          AssertThrow(X != nullptr,
-                      dealii::ExcMessage("SparseCholesky: the solve failed"));
-          const double *xs = static_cast<const double *>(X->x);
+          cholmod->solve_in_place(ordered, k);
           for (std::size_t c = 0; c < k; ++c)
             for (std::size_t g = 0; g < n; ++g)
-              solution[at(c, g)] = xs[c * n + gathered_rows[g]];
-          cholmod_free_dense(&X, &cc);
+              solution[at(c, g)] = ordered[c * n + gathered_rows[g]];
         }
       std::vector<int> counts(owned_counts.size()), displs(owned_counts.size());
       for (unsigned int r = 0; r < owned_counts.size(); ++r)
@@ -499,7 +508,6 @@ namespace cycloid
       std::vector<double> entries(nr * nc, 0.);
       if (cholmod)
         {
-          cholmod_common     &c     = cholmod->common;
           const std::size_t   n     = cholmod->factor->n;
           const std::size_t   block = 4;
           std::vector<double> units(n * block);
@@ -513,24 +521,10 @@ namespace cycloid
                               dealii::ExcIndexRange(columns[first + j], 0, n));
                   units[j * n + columns[first + j]] = 1.;
                 }
-              cholmod_dense B{};
-              B.nrow  = n;
-              B.ncol  = k;
-              B.nzmax = n * k;
-              B.d     = n;
-              B.x     = units.data();
-              B.xtype = CHOLMOD_REAL;
-              B.dtype = CHOLMOD_DOUBLE;
-              cholmod_dense *X =
-                cholmod_solve(CHOLMOD_A, cholmod->factor, &B, &c);
-              AssertThrow(X != nullptr,
-                          dealii::ExcMessage(
-                            "SparseCholesky: the solve failed"));
-              const double *xs = static_cast<const double *>(X->x);
+              cholmod->solve_in_place(units, k);
               for (std::size_t j = 0; j < k; ++j)
                 for (std::size_t i = 0; i < nr; ++i)
-                  entries[i * nc + first + j] = xs[j * n + rows[i]];
-              cholmod_free_dense(&X, &c);
+                  entries[i * nc + first + j] = units[j * n + rows[i]];
             }
         }
       MPI_Bcast(entries.data(), entries.size(), MPI_DOUBLE, 0, comm);

@@ -4,6 +4,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <cycloid/elasticity/elasticity.h>
@@ -149,6 +150,10 @@ namespace cycloid
         return columns[b][a];
       }
 
+      /** B A^{-1} B^T of @p rows, Cholesky-factorised (empty: none). */
+      dealii::LAPACKFullMatrix<double>
+      factorised_schur(const std::vector<Row> &rows) const;
+
       /** B x over the ranks, for @p x owned. */
       std::vector<double>
       row_products(const std::vector<Row>                      &rows,
@@ -159,8 +164,11 @@ namespace cycloid
       elasticity::SparseCholesky factor;
       /** The mesh (LinearElasticity::n_distributions()) of what is kept. */
       unsigned int distribution = 0;
-      /** Hanging nodes and supports of every DoF (no load), as the
-       * contact lines find them (open) and closed. */
+      /** LinearElasticity::n_constraint_setups() after the supports were
+       * set up. */
+      unsigned int installed = 0;
+      /** Hanging nodes and supports (with the unit load) of every DoF,
+       * as the contact lines find them (open) and closed. */
       dealii::AffineConstraints<double> open_held, held;
       /** The solutions without contact, owned entries. */
       dealii::TrilinosWrappers::MPI::Vector x0, x1;

@@ -352,6 +352,25 @@ namespace cycloid
         return constraint_sets.at(k);
       }
 
+      /** How many times the constraint sets were set up (or the DoFs
+       * distributed, or the pattern fixed): unchanged, the sets of the last
+       * setup_constraints() are still in place. */
+      unsigned int
+      n_constraint_setups() const
+      {
+        return constraint_setups;
+      }
+
+      /** The locally relevant DoFs again, with the extra ones given since
+       * (what setup_constraints() does first), for a caller that keeps
+       * the constraint sets in place. */
+      void
+      refresh_relevant_dofs()
+      {
+        if (!pattern_fixed)
+          update_relevant_dofs();
+      }
+
       /** How many times the DoFs were distributed: a change means that
        * every DoF-indexed quantity kept from before is void. */
       unsigned int
@@ -480,7 +499,8 @@ namespace cycloid
 
       /** f += f_int(u) over the owned cells (those of @p cells if given);
        * with @p condense, also @p condensed += C^T f_int(u) (constrained
-       * entries moved onto their masters). */
+       * entries moved onto their masters); with @p operator_only, also the
+       * forces without the history load added to it (the same loop). */
       void
       assemble_internal_forces(
         const dealii::TrilinosWrappers::MPI::Vector &u,
@@ -489,7 +509,8 @@ namespace cycloid
         dealii::TrilinosWrappers::MPI::Vector       *condensed,
         const bool                                   effective = false,
         const bool                                   with_load = false,
-        const CellList                              *cells     = nullptr) const;
+        const CellList                              *cells     = nullptr,
+        dealii::TrilinosWrappers::MPI::Vector *operator_only   = nullptr) const;
 
       /** Density of body @p m in t/mm^3 (the consistent unit with N, mm, s). */
       double
@@ -541,6 +562,8 @@ namespace cycloid
       unsigned int n_builds = 0;
       /** See n_distributions(). */
       unsigned int distributions = 0;
+      /** See n_constraint_setups(). */
+      unsigned int constraint_setups = 0;
       /** structure_digest() of the set the exact pattern was built for. */
       std::size_t pattern_digest = 0;
       /** Jacobi preconditioner of a mass operator (stiffness factor 0). */
