@@ -468,3 +468,82 @@ TEST(Elasticity, CholeskyKeepsItsFactorAndGivesEntriesOfTheInverse)
   EXPECT_EQ(cholesky.n_factorisations(), 2u);
   EXPECT_LT(cholesky_error(cholesky, A), 1e-13);
 }
+
+
+
+TEST(Elasticity, HistoryLoadAloneIsTheFullAssemblysRightHandSide)
+{
+  // What a transient step through contact::ContactSchur assembles: only
+  // set 0's right-hand side, for a new history load on the kept operator.
+  // It must equal that of a full assembly with the same load, with and
+  // without an inhomogeneous set 0 and a stiffness load (the path that
+  // needs the local K), leave set 1 alone, and refuse once the operator
+  // changed (other factors, new constraint sets). Q2, on 1 and 2 ranks.
+  const auto comm = MPI_COMM_WORLD;
+  for (const bool inhomogeneous : {false, true})
+    {
+      const auto                      tria = box_mesh();
+      elasticity::LinearElasticity<3> problem(*tria, 2, {{0, {E, nu, 7850.}}});
+      problem.distribute_dofs();
+      const auto fixed = [&](const double value) {
+        return [&problem, value](dealii::AffineConstraints<double> &c) {
+          dealii::VectorTools::interpolate_boundary_values(
+            problem.dof_handler(),
+            0,
+            dealii::Functions::ConstantFunction<3>(value, 3),
+            c);
+        };
+      };
+      problem.setup_constraints({fixed(inhomogeneous ? 1e-3 : 0.), fixed(1.)});
+      const auto &owned = problem.locally_owned_dofs();
+      // Two different fields w (ghosted), smooth in the DoF number.
+      const auto field = [&](const double k) {
+        dealii::TrilinosWrappers::MPI::Vector o(owned, comm);
+        for (const auto i : owned)
+          o[i] = std::sin(k * i);
+        o.compress(dealii::VectorOperation::insert);
+        dealii::TrilinosWrappers::MPI::Vector g(owned,
+                                                problem.locally_relevant_dofs(),
+                                                comm);
+        g = o;
+        return g;
+      };
+      elasticity::DynamicTerms terms;
+      terms.stiffness = 0.75;
+      terms.mass      = 4e6;
+      terms.mass_load = field(0.1);
+      if (inhomogeneous)
+        terms.stiffness_load = field(0.2);
+      problem.set_dynamic_terms(terms);
+      problem.assemble_sets({});
+      const auto first = problem.right_hand_side(0);
+      const auto unit  = problem.right_hand_side(1);
+
+      terms.mass_load = field(0.3);
+      if (inhomogeneous)
+        terms.stiffness_load = field(0.4);
+      problem.set_dynamic_terms(terms);
+      ASSERT_TRUE(problem.assemble_history_load());
+      dealii::TrilinosWrappers::MPI::Vector alone = problem.right_hand_side(0),
+                                            one   = problem.right_hand_side(1);
+      one -= unit;
+      EXPECT_EQ(one.linfty_norm(), 0.) << "set 1 changed";
+      problem.assemble_sets({});
+      dealii::TrilinosWrappers::MPI::Vector full = problem.right_hand_side(0),
+                                            change(full);
+      change -= first;
+      ASSERT_GT(change.l2_norm(), 0.1 * full.l2_norm());
+      alone -= full;
+      EXPECT_LT(alone.l2_norm(), 1e-13 * full.l2_norm())
+        << (inhomogeneous ? "inhomogeneous" : "homogeneous");
+
+      // Another factor of M, or constraint sets set up again: refused.
+      terms.mass = 5e6;
+      problem.set_dynamic_terms(terms);
+      EXPECT_FALSE(problem.assemble_history_load());
+      problem.assemble_sets({});
+      EXPECT_TRUE(problem.assemble_history_load());
+      problem.setup_constraints({fixed(0.), fixed(1.)});
+      EXPECT_FALSE(problem.assemble_history_load());
+    }
+}

@@ -57,10 +57,19 @@ namespace cycloid
         }
       else
         problem.refresh_relevant_dofs();
-      problem.assemble_sets({});
-      if (!factor.factorize(problem.matrix()))
-        return false;
-      const bool same = factor.kept_factor() && x1.size() == problem.n_dofs();
+      // The operator of the last state, factorised: only the history load
+      // is new (a time step). Otherwise assemble, and the factor is still
+      // kept if the matrix came out the same.
+      const bool untouched = factored && problem.assemble_history_load();
+      if (!untouched)
+        {
+          problem.assemble_sets({});
+          factored = factor.factorize(problem.matrix());
+          if (!factored)
+            return false;
+        }
+      const bool same =
+        (untouched || factor.kept_factor()) && x1.size() == problem.n_dofs();
       if (!same)
         forget_columns();
       // x1 (the unit load, no history) depends on the operator alone.

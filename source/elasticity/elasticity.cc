@@ -182,6 +182,7 @@ namespace cycloid
       system_matrix.clear();
       ready        = Ready::none;
       jacobi_ready = false;
+      assembled    = AssembledOperator();
     }
 
 
@@ -551,6 +552,9 @@ namespace cycloid
       system_matrix.compress(dealii::VectorOperation::add);
       for (auto &rhs : rhs_sets)
         rhs.compress(dealii::VectorOperation::add);
+      assembled = AssembledOperator();
+      if (tractions.empty())
+        assembled = {constraint_setups, dynamic.stiffness, dynamic.mass};
       // A hierarchy on the same matrix object (fixed pattern) stays usable.
       jacobi_ready = false;
       ready        = ready == Ready::amg || ready == Ready::stale_amg ?
@@ -558,6 +562,50 @@ namespace cycloid
                        Ready::none;
       many_solver.reset();
       many_problem.reset();
+    }
+
+
+
+    template <int dim>
+    bool
+    LinearElasticity<dim>::assemble_history_load()
+    {
+      if (assembled.constraint_setups != constraint_setups ||
+          assembled.stiffness != dynamic.stiffness ||
+          assembled.mass != dynamic.mass || rhs_sets.empty())
+        return false;
+      auto &rhs = rhs_sets[0];
+      rhs       = 0;
+      AssemblyScratch<dim> scratch(*map, fe, dynamic);
+      const auto          &constraints = constraint_sets[0];
+      // The local K only where the load or an inhomogeneity (entering the
+      // right-hand side through the local operator) needs it: Newmark's
+      // history load is M w_M alone.
+      const bool need_k =
+        scratch.has_stiffness_load || constraints.has_inhomogeneities();
+      for (const auto &cell : dofs.active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          if (need_k)
+            assemble_local_stiffness<dim>(cell, materials, scratch);
+          else
+            {
+              scratch.cell_matrix = 0;
+              scratch.fe_values.reinit(cell);
+            }
+          cell->get_dof_indices(scratch.indices);
+          const double rho = scratch.has_mass || scratch.has_mass_load ?
+                               density(cell->material_id()) :
+                               0.;
+          add_dynamic_terms(dynamic, rho, scratch);
+          constraints.distribute_local_to_global(scratch.cell_load,
+                                                 scratch.indices,
+                                                 rhs,
+                                                 scratch.cell_matrix);
+        }
+      rhs.compress(dealii::VectorOperation::add);
+      return true;
     }
 
 

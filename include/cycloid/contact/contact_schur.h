@@ -69,8 +69,11 @@ namespace cycloid
        * supports with no load, set 1: with the unit load; no contact
        * node), factorise it unless the matrix is the one factorised last
        * (then the kept entries of A^{-1} stay valid) and solve for both
-       * right-hand sides (x0, x1). Returns false, having done nothing
-       * else, if the matrix is not symmetric positive definite.
+       * right-hand sides (x0, x1). While the operator is the one
+       * factorised (a time step at the same step size), only the history
+       * load is assembled (LinearElasticity::assemble_history_load()).
+       * Returns false, having done nothing else, if the matrix is not
+       * symmetric positive definite.
        */
       bool
       begin_state(elasticity::LinearElasticity<dim> &problem,
@@ -167,6 +170,8 @@ namespace cycloid
       /** LinearElasticity::n_constraint_setups() after the supports were
        * set up. */
       unsigned int installed = 0;
+      /** Whether the last begin_state() factorised the problem's matrix. */
+      bool factored = false;
       /** Hanging nodes and supports (with the unit load) of every DoF,
        * as the contact lines find them (open) and closed. */
       dealii::AffineConstraints<double> open_held, held;

@@ -175,6 +175,23 @@ namespace cycloid
                                    const dealii::Function<dim> *> &tractions);
 
       /**
+       * Reassemble the right-hand side of constraint set 0 alone (the
+       * history load of the dynamic terms), keeping the matrix and the
+       * right-hand sides of the other sets; returns whether it did. It
+       * does so only while the operator is the one the last
+       * assemble_sets() built, without tractions: the same DoFs, the same
+       * constraint sets and the same factors of K and M. Otherwise it
+       * changes nothing and returns false, and the caller assembles.
+       *
+       * Why: a transient run through the contact Schur complement keeps
+       * one operator for all its steps, and only the history load changes
+       * from step to step; building the matrix is most of an assembly's
+       * time.
+       */
+      bool
+      assemble_history_load();
+
+      /**
        * Build the preconditioner of the current matrix for @p solver (the
        * AMG hierarchy, or the factorisation of the direct solver) unless it
        * is built already; returns whether it built one. solve_set() calls
@@ -564,6 +581,19 @@ namespace cycloid
       unsigned int distributions = 0;
       /** See n_constraint_setups(). */
       unsigned int constraint_setups = 0;
+      /** What the matrix holds, recorded by assemble_sets() and checked
+       * by assemble_history_load(): the constraint set-up it was built
+       * with and the factors of K and M (negative: nothing assembled, or
+       * assembled with tractions). */
+      struct AssembledOperator
+      {
+        /** n_constraint_setups() at the assembly. */
+        unsigned int constraint_setups = 0;
+        /** DynamicTerms::stiffness at the assembly. */
+        double stiffness = -1.;
+        /** DynamicTerms::mass at the assembly. */
+        double mass = -1.;
+      } assembled;
       /** structure_digest() of the set the exact pattern was built for. */
       std::size_t pattern_digest = 0;
       /** Jacobi preconditioner of a mass operator (stiffness factor 0). */
