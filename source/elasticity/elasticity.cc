@@ -13,6 +13,7 @@
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_solver.h>
 
+#include <cycloid/elasticity/digest.h>
 #include <cycloid/elasticity/elasticity.h>
 #include <cycloid/elasticity/support_points.h>
 
@@ -118,19 +119,16 @@ namespace cycloid
     LinearElasticity<dim>::structure_digest(
       const dealii::AffineConstraints<double> &c)
     {
-      // FNV-1a over each line's DoF and its entries' DoFs.
-      std::size_t h   = 1469598103934665603ull;
-      const auto  mix = [&h](const dealii::types::global_dof_index i) {
-        h = (h ^ static_cast<std::size_t>(i)) * 1099511628211ull;
-      };
+      // Each line's DoF and its entries' DoFs (not the weights).
+      Digest digest;
       for (const auto &line : c.get_lines())
         {
-          mix(line.index);
-          mix(line.entries.size());
+          digest.add_word(line.index);
+          digest.add_word(line.entries.size());
           for (const auto &entry : line.entries)
-            mix(entry.first);
+            digest.add_word(entry.first);
         }
-      return h;
+      return digest.value();
     }
 
 

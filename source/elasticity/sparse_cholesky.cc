@@ -2,6 +2,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cycloid/elasticity/digest.h>
 #include <cycloid/elasticity/sparse_cholesky.h>
 
 #include <algorithm>
@@ -157,14 +158,9 @@ namespace cycloid
     SparseCholesky::fingerprint(
       const dealii::TrilinosWrappers::SparseMatrix &matrix)
     {
-      // FNV-1a over the bytes of every row's global indices and values.
-      const Epetra_CrsMatrix &A     = matrix.trilinos_matrix();
-      std::size_t             h     = 1469598103934665603ull;
-      const auto              bytes = [&h](const void *p, const std::size_t n) {
-        const unsigned char *c = static_cast<const unsigned char *>(p);
-        for (std::size_t k = 0; k < n; ++k)
-          h = (h ^ c[k]) * 1099511628211ull;
-      };
+      // Every row's global indices and values, byte by byte.
+      const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
+      Digest                  digest;
       for (int r = 0; r < A.NumMyRows(); ++r)
         {
           int     length = 0;
@@ -172,15 +168,15 @@ namespace cycloid
           int    *c      = nullptr;
           A.ExtractMyRowView(r, length, v, c);
           const int row = A.GRID(r);
-          bytes(&row, sizeof(row));
+          digest.add_bytes(&row, sizeof(row));
           for (int k = 0; k < length; ++k)
             {
               const int column = A.GCID(c[k]);
-              bytes(&column, sizeof(column));
-              bytes(&v[k], sizeof(double));
+              digest.add_bytes(&column, sizeof(column));
+              digest.add_bytes(&v[k], sizeof(double));
             }
         }
-      return h;
+      return digest.value();
     }
 
 
