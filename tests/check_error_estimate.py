@@ -32,7 +32,14 @@ FILE.prm is the new-user case of issue #15: the 2D slab, modified profile,
   model's most loaded pin is the solved n of that pin at that force;
 * with Mesh/Target accuracy 0.01 from Contact refinements 0: it reports
   the target reached, and lands within 1 % of the reference in K_secant,
-  K_tangent and every pin force (of the largest).
+  K_tangent and every pin force (of the largest);
+* the default run again with the memory the run may use
+  (CYCLOID_AVAILABLE_MEMORY_MB) set 1 MB above the cost model's estimate
+  for its first mesh: that mesh is solved, its first refinement would not
+  fit, so the run says "refinement stopped", reports the target NOT
+  reached, exits normally and reports the state of the first mesh (its
+  DoFs, and K as the Target accuracy 0 run on the same mesh has them),
+  flagged.
 """
 import argparse
 import os
@@ -47,7 +54,7 @@ BRACKET = 10.0
 RESOLUTION_CONSTANT = 0.25  # results::resolution_constant
 
 
-def run(exe, text, work, name, mesh):
+def run(exe, text, work, name, mesh, env=None):
     out = os.path.join(work, name)
     prm = out + ".prm"
     with open(prm, "w") as f:
@@ -57,7 +64,8 @@ def run(exe, text, work, name, mesh):
     flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
     with open(out + ".log", "w") as log:
         rc = subprocess.call(["mpirun"] + flags + ["-np", "2", exe, prm],
-                             stdout=log, stderr=subprocess.STDOUT)
+                             stdout=log, stderr=subprocess.STDOUT,
+                             env=dict(os.environ, **(env or {})))
     if rc != 0:
         sys.exit("%s failed, see %s.log" % (name, out))
     s = rows(os.path.join(out, "stiffness.csv"))[0]
@@ -127,6 +135,24 @@ def check_resolution(args, text, ref, band):
           "cr3 without the estimate: flagged by its resolution")
 
 
+def check_memory_stop(args, text, coarse, default_log):
+    """A refinement that would not fit is not made; the state stays."""
+    n0 = int(re.search(r"DoFs (\d+); estimated peak memory", default_log).group(1))
+    # The cost model, 2D on 2 ranks: 150 MB a rank + 2.681 kB a DoF
+    # (source/stage/cost_estimate.cc).
+    limit = 300 + 2.681e-3 * n0 + 1
+    s, _, log = run(args.exe, text, args.work, "memory-stop", {},
+                    {"CYCLOID_AVAILABLE_MEMORY_MB": "%.3f" % limit})
+    check("refinement stopped: the next refinement at the contacts" in log,
+          "memory stop: no 'refinement stopped' line")
+    check("NOT reached" in log, "memory stop: the target is not reported missed")
+    check(int(s["dofs"]) == n0, "memory stop: %s DoFs, not the first mesh's %d" % (s["dofs"], n0))
+    check(s["mesh_warning"] == "1", "memory stop: the state is not flagged")
+    for q in ("K_secant_Nm_per_rad", "K_tangent_Nm_per_rad"):
+        a, b = float(s[q]), float(coarse[q])
+        check(abs(a - b) <= 1e-9 * abs(b), "memory stop: %s %g, the first mesh gives %g" % (q, a, b))
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("prm")
@@ -176,6 +202,8 @@ def main():
         check(e <= 0.02, "default run: %s off by %.3g from the reference" % (q, e))
         check(e <= estimates(sd)[q] + band[q],
               "default run: %s error %.3g above its estimate %.3g" % (q, e, estimates(sd)[q]))
+
+    check_memory_stop(args, text, s0, logd)
 
     st, pt, logt = run(args.exe, text, args.work, "target", {"Target accuracy": 0.01})
     check("target accuracy 0.01: reached" in logt, "target run: target not reported reached")

@@ -518,10 +518,56 @@ namespace cycloid
         }
       if (flagged == 0)
         return false;
+      tria.prepare_coarsening_and_refinement();
+      if (!refinement_fits())
+        {
+          for (const auto &cell : tria.active_cell_iterators())
+            cell->clear_refine_flag();
+          return false;
+        }
       const auto snapshot = contact->active_set_snapshot();
       tria.execute_coarsening_and_refinement();
       rebuild(snapshot);
       return true;
+    }
+
+
+
+    template <int dim>
+    bool
+    StageScene<dim>::refinement_fits()
+    {
+      // Every rank holds the whole mesh and the same flags.
+      std::size_t flagged = 0;
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->refine_flag_set())
+          ++flagged;
+      const double cells = tria.n_global_active_cells();
+      const double grown = (cells + ((1u << dim) - 1) * flagged) / cells;
+      const auto  &m     = settings.mesh;
+      const auto   dofs  = static_cast<dealii::types::global_dof_index>(
+        grown * contact->elasticity().n_dofs());
+      const CostInputs in{dim,
+                          settings.scene.n_discs,
+                          dofs,
+                          m.degree,
+                          0,
+                          dealii::Utilities::MPI::n_mpi_processes(comm),
+                          false};
+      const double     needed    = estimate_cost(in).memory_bytes;
+      const double     available = available_memory_bytes(comm);
+      if (needed <= available)
+        return true;
+      std::ostringstream why;
+      why << std::setprecision(3) << "the next refinement at the contacts ("
+          << flagged << " cells, about " << dofs
+          << " DoFs) would need an estimated " << needed / 1e9
+          << " GB, more than the " << available / 1e9
+          << " GB available (MemAvailable and what the run holds)";
+      memory_stop = why.str();
+      pcout << "  refinement stopped: " << memory_stop
+            << "; the state keeps the mesh it was solved on" << std::endl;
+      return false;
     }
 
 
@@ -742,6 +788,7 @@ namespace cycloid
         warm_load = load;
       const bool estimate = settings.mesh.error.estimates(dim);
       coarse_failure.clear();
+      memory_stop.clear();
       SolveCost                        cost;
       std::vector<results::StageState> levels; // coarsest first
       bool have_coarse = estimate && solve_coarser_levels(load, levels, cost);
@@ -793,9 +840,12 @@ namespace cycloid
             << " DoFs), largest estimate " << s.error.largest()
             << (s.error.largest() <= target ?
                   std::string() :
+                !memory_stop.empty() ?
+                  "; " + memory_stop :
                   "; Mesh/Maximum accuracy cycles (now " +
                     std::to_string(settings.mesh.error.max_cycles) +
-                    ") or Mesh/Contact refinements would go further")
+                    ") or Mesh/Contact refinements would "
+                    "go further")
             << std::endl;
     }
 

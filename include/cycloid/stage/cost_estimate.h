@@ -65,8 +65,8 @@ namespace cycloid
      * Memory available to the run [bytes]: /proc/meminfo MemAvailable of
      * each node the ranks of @p comm run on, summed over the nodes, plus
      * what the ranks already hold (VmRSS, part of the estimate). The
-     * environment variable CYCLOID_AVAILABLE_MEMORY_MB replaces the
-     * nodes' sum (tests). Collective; infinite if nothing is known.
+     * environment variable CYCLOID_AVAILABLE_MEMORY_MB replaces the whole
+     * figure (tests). Collective; infinite if nothing is known.
      */
     double
     available_memory_bytes(const MPI_Comm comm);

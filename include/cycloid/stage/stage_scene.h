@@ -310,9 +310,20 @@ namespace cycloid
                    const bool                 have_coarse,
                    const results::StageState &fine) const;
       /** Refine next to the active nodes (up to level_cap()); false if no
-       * cell was refined. */
+       * cell was refined, or if the refined mesh would not fit into the
+       * memory available (refinement_fits()). */
       bool
       refine_at_contacts();
+      /** Whether the mesh with the refine flags now set fits into the
+       * memory available, by the cost model, its DoFs taken in proportion
+       * to the active cells; if not, says so on the console and records
+       * it in memory_stop. The flags must be prepared
+       * (prepare_coarsening_and_refinement()). Why: in 3D one refinement
+       * at every active node multiplied the seed case's DoFs by five
+       * (1.5 M to 7.5 M), and the run was killed for memory with its
+       * state lost. */
+      bool
+      refinement_fits();
       /** Print whether @p s met `Mesh/Target accuracy` (if set). */
       void
       report_accuracy(const results::StageState &s) const;
@@ -403,6 +414,9 @@ namespace cycloid
       /** Why the current state's coarser level failed (empty: it did
        * not). */
       std::string coarse_failure;
+      /** Why the current state stopped refining before its target (empty:
+       * it did not stop for memory). */
+      std::string memory_stop;
     };
   } // namespace stage
 } // namespace cycloid
