@@ -60,7 +60,8 @@ namespace cycloid
       const auto &m             = settings.stage.mesh;
       options.warning_threshold = m.error.warning_threshold;
       // Under a target the state has already refined as far as it was
-      // allowed: the cure is to allow more cycles.
+      // allowed: the cure is to allow more cycles, or more memory where a
+      // refinement would not have fitted (the state said so).
       options.refine_advice =
         m.error.target_accuracy > 0 ?
           "Cure: raise Mesh/Maximum accuracy cycles (now " +
@@ -69,7 +70,8 @@ namespace cycloid
             std::to_string(m.contact_refinements) +
             ") so that Target accuracy (" +
             dealii::Utilities::to_string(m.error.target_accuracy) +
-            ") can be reached (doc/error-estimate.md)." :
+            ") can be reached; where a state's refinement stopped for "
+            "memory, run it with more (more nodes) (doc/error-estimate.md)." :
           "Cure: raise Mesh/Contact refinements (now " +
             std::to_string(m.contact_refinements) +
             "), or set Mesh/Target accuracy (now 0) to the accuracy "
