@@ -448,6 +448,38 @@ namespace cycloid
 
 
 
+      /** The local operator s_K K + s_M M of @p cell and its history load
+       * into @p s, and its DoF indices. K is left out (zero) unless
+       * @p with_k: a mass operator does not need it, nor does a history
+       * load without K w_K when no inhomogeneity enters through the local
+       * operator. @p density gives a body's density. */
+      template <int dim, typename Density>
+      void
+      assemble_local_operator(
+        const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
+        const std::map<dealii::types::material_id, parameters::ElasticMaterial>
+                             &materials,
+        const bool            with_k,
+        const Density        &density,
+        const DynamicTerms   &dynamic,
+        AssemblyScratch<dim> &s)
+      {
+        if (with_k)
+          assemble_local_stiffness<dim>(cell, materials, s);
+        else
+          {
+            s.cell_matrix = 0;
+            s.fe_values.reinit(cell);
+          }
+        cell->get_dof_indices(s.indices);
+        // The density is looked up only where the operator needs it.
+        const double rho =
+          s.has_mass || s.has_mass_load ? density(cell->material_id()) : 0.;
+        add_dynamic_terms(dynamic, rho, s);
+      }
+
+
+
       /** Boundary tractions of @p cell into @p s.cell_rhs (reset first). */
       template <int dim>
       void
@@ -527,23 +559,15 @@ namespace cycloid
       // A mass operator (a projection) needs no K: it would be scaled by 0.
       const bool without_k =
         dynamic.stiffness == 0. && !scratch.has_stiffness_load;
+      const auto density_of = [this](const dealii::types::material_id m) {
+        return density(m);
+      };
       for (const auto &cell : dofs.active_cell_iterators())
         {
           if (!cell->is_locally_owned())
             continue;
-          if (without_k)
-            {
-              scratch.cell_matrix = 0;
-              scratch.fe_values.reinit(cell);
-            }
-          else
-            assemble_local_stiffness<dim>(cell, materials, scratch);
-          cell->get_dof_indices(scratch.indices);
-          // The density is looked up only where the operator needs it.
-          const double rho = scratch.has_mass || scratch.has_mass_load ?
-                               density(cell->material_id()) :
-                               0.;
-          add_dynamic_terms(dynamic, rho, scratch);
+          assemble_local_operator<dim>(
+            cell, materials, !without_k, density_of, dynamic, scratch);
           assemble_local_tractions<dim>(cell, tractions, fe, scratch);
           distribute_local(scratch, constraint_sets, system_matrix, rhs_sets);
         }
@@ -581,22 +605,15 @@ namespace cycloid
       // history load is M w_M alone.
       const bool need_k =
         scratch.has_stiffness_load || constraints.has_inhomogeneities();
+      const auto density_of = [this](const dealii::types::material_id m) {
+        return density(m);
+      };
       for (const auto &cell : dofs.active_cell_iterators())
         {
           if (!cell->is_locally_owned())
             continue;
-          if (need_k)
-            assemble_local_stiffness<dim>(cell, materials, scratch);
-          else
-            {
-              scratch.cell_matrix = 0;
-              scratch.fe_values.reinit(cell);
-            }
-          cell->get_dof_indices(scratch.indices);
-          const double rho = scratch.has_mass || scratch.has_mass_load ?
-                               density(cell->material_id()) :
-                               0.;
-          add_dynamic_terms(dynamic, rho, scratch);
+          assemble_local_operator<dim>(
+            cell, materials, need_k, density_of, dynamic, scratch);
           constraints.distribute_local_to_global(scratch.cell_load,
                                                  scratch.indices,
                                                  rhs,
