@@ -1,15 +1,17 @@
 // Tests of the stage mesh: body and boundary identification, areas and
 // volumes against the exact geometry, vertices on the exact curves after
 // refinement (manifolds), second-order convergence of the Q1 area, and the
-// 3D two-disc scene with housing.
+// 3D two-disc scene with housing, and the adaptive refinement rule.
 
 #include <deal.II/base/numbers.h>
 
 #include <deal.II/distributed/shared_tria.h>
+#include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
 #include <cycloid/app/all_parameters.h>
 #include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/mesh/contact_refinement.h>
 #include <cycloid/mesh/stage_mesh.h>
 
 #include <gtest/gtest.h>
@@ -252,4 +254,57 @@ TEST(Mesh, SharedTriangulationIsPartitionedWithMetis)
     dealii::parallel::shared::Triangulation<2>::partition_metis);
   mesh::create_stage_mesh(p.mesh_settings(), placed_at(0.), tria);
   EXPECT_EQ(tria.n_locally_owned_active_cells(), tria.n_active_cells());
+}
+
+
+
+namespace
+{
+  /** The cells near_contact_node() selects for the node @p p. */
+  template <int dim>
+  std::set<unsigned int>
+  selected(const dealii::Triangulation<dim> &tria, const dealii::Point<dim> &p)
+  {
+    std::set<unsigned int> cells;
+    for (const auto &cell : tria.active_cell_iterators())
+      if (mesh::near_contact_node<dim>(cell, p))
+        cells.insert(cell->active_cell_index());
+    return cells;
+  }
+} // namespace
+
+
+
+TEST(Mesh, AdaptiveRuleSelectsCellsNearTheNodeInPlaneAndAxially)
+{
+  // 2D: cells of size 1 (diameter sqrt 2) on a 10 x 10 square, the node at
+  // a corner of the first cell: centres closer than 2 sqrt 2 = 2.83.
+  dealii::Triangulation<2> square;
+  dealii::GridGenerator::subdivided_hyper_rectangle(square,
+                                                    {10, 10},
+                                                    dealii::Point<2>(0, 0),
+                                                    dealii::Point<2>(10, 10));
+  const std::set<unsigned int> in_2d = selected(square, dealii::Point<2>(1, 1));
+  std::size_t                  expected = 0;
+  for (const auto &cell : square.active_cell_iterators())
+    expected +=
+      cell->center().distance(dealii::Point<2>(1, 1)) < 2 * std::sqrt(2.);
+  EXPECT_EQ(in_2d.size(), expected);
+  // Offsets of the centres 0.5 (two cells), 1.5 or 2.5 in x and y: 4 at
+  // (0.5, 0.5), 4 at (0.5, 1.5), 4 at (0.5, 2.5), 1 at (1.5, 1.5).
+  EXPECT_EQ(expected, 13u);
+
+  // 3D: the same section extruded into one layer 20 long, as the stage's
+  // one-axial-layer meshes. The 3D diameter (20.05) would take every
+  // cell; the in-plane size (sqrt 2) takes the 2D ones.
+  dealii::Triangulation<3> slab;
+  dealii::GridGenerator::subdivided_hyper_rectangle(
+    slab, {10, 10, 1}, dealii::Point<3>(0, 0, 0), dealii::Point<3>(10, 10, 20));
+  EXPECT_EQ(selected(slab, dealii::Point<3>(1, 1, 10)).size(), expected);
+  EXPECT_EQ(selected(slab, dealii::Point<3>(1, 1, 0)).size(), expected);
+  // Axially: a node more than two in-plane sizes beyond the layer's end
+  // selects nothing (the other disc of a two-disc scene), one just
+  // inside that distance the same cells.
+  EXPECT_TRUE(selected(slab, dealii::Point<3>(1, 1, 20 + 2.9)).empty());
+  EXPECT_EQ(selected(slab, dealii::Point<3>(1, 1, 20 + 2.8)).size(), expected);
 }

@@ -63,6 +63,27 @@ namespace cycloid
 
 
 
+    namespace
+    {
+      /** The radius of the cell's bounding circle about its centre in the
+       * section plane (x, y). */
+      template <int dim>
+      double
+      section_radius(
+        const typename dealii::Triangulation<dim>::active_cell_iterator &cell)
+      {
+        const auto c = cell->center();
+        double     r = 0;
+        for (const unsigned int v : cell->vertex_indices())
+          r = std::max(r,
+                       std::hypot(cell->vertex(v)[0] - c[0],
+                                  cell->vertex(v)[1] - c[1]));
+        return r;
+      }
+    } // namespace
+
+
+
     template <int dim>
     void
     refine_near_contacts(const std::vector<dealii::Point<2>> &points,
@@ -76,12 +97,8 @@ namespace cycloid
             {
               // A cell is near a contact point if the point lies within
               // radius of the cell's bounding circle.
-              const auto c = cell->center();
-              double     r = 0;
-              for (const unsigned int v : cell->vertex_indices())
-                r = std::max(r,
-                             std::hypot(cell->vertex(v)[0] - c[0],
-                                        cell->vertex(v)[1] - c[1]));
+              const auto   c = cell->center();
+              const double r = section_radius<dim>(cell);
               for (const auto &p : points)
                 if (std::hypot(p[0] - c[0], p[1] - c[1]) < radius + r)
                   {
@@ -91,6 +108,31 @@ namespace cycloid
             }
           tria.execute_coarsening_and_refinement();
         }
+    }
+
+
+
+    template <int dim>
+    bool
+    near_contact_node(
+      const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
+      const dealii::Point<dim>                                        &p)
+    {
+      const auto c = cell->center();
+      if (dim == 2)
+        return p.distance(c) < 2 * cell->diameter();
+      // In-plane size and axial span of the cell.
+      const double size  = 2 * section_radius<dim>(cell);
+      double       z_low = c[dim - 1], z_high = z_low;
+      for (const unsigned int v : cell->vertex_indices())
+        {
+          z_low  = std::min(z_low, cell->vertex(v)[dim - 1]);
+          z_high = std::max(z_high, cell->vertex(v)[dim - 1]);
+        }
+      const double axial_distance =
+        std::max({0., z_low - p[dim - 1], p[dim - 1] - z_high});
+      return std::hypot(p[0] - c[0], p[1] - c[1]) < 2 * size &&
+             axial_distance < 2 * size;
     }
 
 
@@ -105,5 +147,11 @@ namespace cycloid
                             const double,
                             const unsigned int,
                             dealii::Triangulation<3> &);
+    template bool
+    near_contact_node<2>(const dealii::Triangulation<2>::active_cell_iterator &,
+                         const dealii::Point<2> &);
+    template bool
+    near_contact_node<3>(const dealii::Triangulation<3>::active_cell_iterator &,
+                         const dealii::Point<3> &);
   } // namespace mesh
 } // namespace cycloid

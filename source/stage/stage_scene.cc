@@ -10,6 +10,7 @@
 
 #include <cycloid/analytic/pair_stiffness.h>
 #include <cycloid/elasticity/support_points.h>
+#include <cycloid/mesh/contact_refinement.h>
 #include <cycloid/postprocess/report.h>
 #include <cycloid/results/error_estimate.h>
 #include <cycloid/stage/cost_estimate.h>
@@ -506,10 +507,8 @@ namespace cycloid
         {
           if (static_cast<unsigned int>(cell->level()) >= cap)
             continue;
-          const auto   c = cell->center();
-          const double r = cell->diameter();
           for (const auto &p : points)
-            if (p.distance(c) < 2 * r)
+            if (mesh::near_contact_node<dim>(cell, p))
               {
                 cell->set_refine_flag();
                 ++flagged;

@@ -50,6 +50,25 @@ namespace cycloid
                          const double                         radius,
                          const unsigned int                   n_cycles,
                          dealii::Triangulation<dim>          &tria);
+
+    /**
+     * @brief Whether @p cell is within two of its own sizes of the contact
+     * node @p p: the rule of the adaptive refinement at the active nodes.
+     *
+     * In 2D the distance from the cell's centre is below twice the cell's
+     * diameter. In 3D the cell's size is measured in the section plane
+     * (twice the largest distance of a vertex from the centre in x, y), and
+     * @p p must lie in the cell's axial span widened by twice that size:
+     * the 3D meshes are extruded, with cells as long as a disc is wide, so
+     * the 3D diameter would reach across half the disc and refine nearly
+     * every cell of a loaded disc (233 k of 370 k cells on the 3D seed
+     * case, doc/error-estimate.md).
+     */
+    template <int dim>
+    bool
+    near_contact_node(
+      const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
+      const dealii::Point<dim>                                        &p);
   } // namespace mesh
 } // namespace cycloid
 
