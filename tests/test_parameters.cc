@@ -559,6 +559,12 @@ TEST(Parameters, CostModelMatchesTheMeasuredRuns)
       EXPECT_NEAR(e.memory_bytes / 1e6 / r.mb, 1., r.mb_tol) << r.dofs;
       EXPECT_NEAR(e.seconds_per_state / r.seconds, 1., r.s_tol) << r.dofs;
     }
+  // Adaptive cycles: the 3D seed case refined twice at its active nodes
+  // (Target accuracy 0.01: 2781414 DoFs, 13461 MB; doc/scene-guide.md).
+  EXPECT_NEAR(stage::estimate_cost({3, 2, 1503003, 1, 2, 2}).memory_bytes /
+                13461e6,
+              1.,
+              0.1);
   const auto e = stage::estimate_cost({3, 2, 2519019, 1, 0, 2});
   EXPECT_EQ(e.line().substr(0, 47),
             "DoFs 2519019; estimated peak memory 11 GB (summ");

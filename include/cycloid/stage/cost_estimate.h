@@ -31,12 +31,13 @@ namespace cycloid
      * from a cost model fitted to the measured runs of doc/ladder/ladder.csv
      * (one state, seed case, this machine; doc/scene-guide.md "Cost
      * model"): per family (2D; 3D one disc; 3D two discs) peak memory =
-     * 150 MB per rank + a DoFs (a at 2 ranks 2.68, 5.62, 6.97 kB per DoF,
+     * 150 MB per rank + a DoFs (a at 2 ranks 2.68, 3.59, 4.38 kB per DoF,
      * 0.74 of that on 1 rank) and time of a state = c DoFs^p at 2 ranks
-     * (p = 2.06, 1.47, 1.63), (2 / ranks)^0.83 on other rank counts.
-     * Adaptive cycles add states on meshes 1.15 (2D) or 2.7 (3D) times
-     * larger each; degree 2 doubles the memory per DoF and multiplies the
-     * time by 1.5 (not fitted: no measured memory for Q2). The error
+     * (p = 2.06, 1.39, 1.16), (2 / ranks)^0.83 on other rank counts.
+     * Adaptive cycles add states on meshes 1.15 (2D), 1.28 (3D one disc)
+     * or 1.36 (3D two discs) times larger each; degree 2 doubles the
+     * memory per DoF and multiplies the time by 1.5 (not fitted: no
+     * measured memory for Q2). The error
      * estimate's coarser levels add half a state (measured in 2D: 8 to
      * 46 %, the finest solve starting from the coarser active set).
      */
