@@ -1,57 +1,30 @@
 #!/usr/bin/python3
-"""Compare runs state by state against a reference run (doc/reduced-model.md,
-"Against the finer 3D reference").
+"""Compare finished runs state by state with a reference run, by the measures
+of validate.py (doc/reduced-model.md, "Against the finer 3D reference").
 
 Usage: benchmarks/reduced/compare.py REFERENCE_DIR RUN_DIR [RUN_DIR ...]
            [--csv OUT --case NAME]
 
-Each directory is a run's output (stiffness.csv, pin_forces.csv). States are
-matched by their torque. Per state: K_secant, K_tangent and the largest pin
-force relative to the reference, the largest pin-force difference relative
-to the reference's largest pin force (the measure of the issues: every pin
-force as a fraction of the largest), the engaged pins (above 1e-3 of the
-largest force) of both, and, where the run has it, its contact-resolution
-indicator (`resolution_error`) and its nodes across the Hertz width. With
---csv the rows are appended to OUT (written with a header if new).
+Each directory is a run's output (stiffness.csv, pin_forces.csv); states are
+matched by their torque (validate.compare). Per state: K_secant and
+K_tangent relative to the reference, the largest pin-force difference over
+the reference's largest pin force (`max_pin_force_error`), F_max relative to
+the reference's, the engaged pins of both and the run's contact-resolution
+indicator. The column names are validate.py's: `*_reduced` is the run,
+`*_fe` the reference. With --csv the rows are appended to OUT (a header if
+new).
 """
 import argparse
 import csv
 import os
+import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from validate import compare, read  # noqa: E402
 
-def states(directory):
-    stiffness = list(csv.DictReader(open(os.path.join(directory, "stiffness.csv"))))
-    pins = list(csv.DictReader(open(os.path.join(directory, "pin_forces.csv"))))
-    out = {}
-    for s in stiffness:
-        forces = {(r["disc"], r["pin"]): float(r["Fn_N"]) for r in pins if r["step"] == s["step"]}
-        out[float(s["torque_Nm"])] = (s, forces)
-    return out
-
-
-def compare(reference, run):
-    rows = []
-    for torque, (s, f) in sorted(reference.items()):
-        if torque not in run:
-            continue
-        so, fo = run[torque]
-        largest = max(f.values())
-        worst = max(f, key=lambda k: abs(fo[k] - f[k]))
-        rel = lambda c: float(so[c]) / float(s[c]) - 1
-        engaged = lambda g: sum(1 for v in g.values() if v > 1e-3 * largest)
-        res = so.get("resolution_error", "nan") or "nan"
-        rows.append({
-            "torque_Nm": torque,
-            "K_secant_error": rel("K_secant_Nm_per_rad"),
-            "K_tangent_error": rel("K_tangent_Nm_per_rad"),
-            "max_pin_force_error": rel("max_pin_force_N"),
-            "worst_pin_error": abs(fo[worst] - f[worst]) / largest,
-            "worst_pin": "disc %s pin %s" % worst,
-            "engaged_run": engaged(fo), "engaged_reference": engaged(f),
-            "resolution_error": float(res), "hertz_nodes": float(so.get("hertz_nodes", "nan") or "nan"),
-            "dofs": int(so["dofs"]), "reference_dofs": int(s["dofs"]),
-        })
-    return rows
+KEYS = ['case', 'run', 'torque_Nm', 'K_secant_error', 'K_tangent_error', 'F_max_error',
+        'max_pin_force_error', 'same_engaged_pins', 'engaged_reduced', 'engaged_fe',
+        'resolution_error', 'hertz_nodes', 'reduced_dofs', 'fe_dofs']
 
 
 def main():
@@ -61,22 +34,21 @@ def main():
     parser.add_argument("--csv")
     parser.add_argument("--case", default="")
     args = parser.parse_args()
-    reference = states(args.reference)
+    reference = read(args.reference)
     table = []
     for run in args.runs:
-        for row in compare(reference, states(run)):
-            row = dict(case=args.case, run=os.path.basename(os.path.normpath(run)), **row)
-            table.append(row)
-            print("%s T=%g: K_secant %+.2f %%, K_tangent %+.2f %%, F_max %+.2f %%, worst pin %.2f %% of "
-                  "the largest (%s), engaged %d/%d, resolution indicator %.2f %%, DoFs %d" % (
-                      row["run"], row["torque_Nm"], 100 * row["K_secant_error"],
-                      100 * row["K_tangent_error"], 100 * row["max_pin_force_error"],
-                      100 * row["worst_pin_error"], row["worst_pin"], row["engaged_run"],
-                      row["engaged_reference"], 100 * row["resolution_error"], row["dofs"]))
+        for r in compare(read(run), reference):
+            r.update(case=args.case, run=os.path.basename(os.path.normpath(run)))
+            table.append({k: r[k] for k in KEYS})
+            print("%s T=%s: K_secant %+.2f %%, K_tangent %+.2f %%, F_max %+.2f %%, every pin within "
+                  "%.2f %% of the largest, engaged %d/%d, resolution indicator %.2f %%" % (
+                      r["run"], r["torque_Nm"], 100 * r["K_secant_error"], 100 * r["K_tangent_error"],
+                      100 * r["F_max_error"], 100 * r["max_pin_force_error"], r["engaged_reduced"],
+                      r["engaged_fe"], 100 * r["resolution_error"]))
     if args.csv and table:
         new = not os.path.exists(args.csv)
         with open(args.csv, "a", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=list(table[0]))
+            w = csv.DictWriter(f, fieldnames=KEYS)
             if new:
                 w.writeheader()
             w.writerows(table)

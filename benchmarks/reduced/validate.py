@@ -64,14 +64,21 @@ def read(out):
 
 
 def compare(red, fe):
+    """Per state of RED that FE also has (states matched by torque): the
+    relative errors of RED against FE, the largest pin-force difference
+    over FE's largest pin force, the engaged pins, and RED's own
+    contact-resolution indicator (nan for the reduced model)."""
     rows = []
-    for a, b in zip(red[0], fe[0]):
-        step = a['step']
+    fe_states = {float(b['torque_Nm']): b for b in fe[0]}
+    for a in red[0]:
+        b = fe_states.get(float(a['torque_Nm']))
+        if b is None:
+            continue
         err = {k: float(a[k]) / float(b[k]) - 1 for k in
                ['K_secant_Nm_per_rad', 'K_tangent_Nm_per_rad',
                 'K_secant_elastic_Nm_per_rad']}
-        fa = {(p['disc'], p['pin']): float(p['Fn_N']) for p in red[1] if p['step'] == step}
-        fb = {(p['disc'], p['pin']): float(p['Fn_N']) for p in fe[1] if p['step'] == step}
+        fa = {(p['disc'], p['pin']): float(p['Fn_N']) for p in red[1] if p['step'] == a['step']}
+        fb = {(p['disc'], p['pin']): float(p['Fn_N']) for p in fe[1] if p['step'] == b['step']}
         fmax = max(fb.values())
         dev = max(abs(fa.get(k, 0) - fb.get(k, 0)) for k in set(fa) | set(fb)) / fmax
         ea = sorted(k for k, v in fa.items() if v > 0)
@@ -81,6 +88,9 @@ def compare(red, fe):
                          K_tangent_error=err['K_tangent_Nm_per_rad'],
                          K_secant_elastic_error=err['K_secant_elastic_Nm_per_rad'],
                          max_pin_force_error=dev,
+                         F_max_error=float(a['max_pin_force_N']) / fmax - 1,
+                         resolution_error=float(a.get('resolution_error') or 'nan'),
+                         hertz_nodes=float(a.get('hertz_nodes') or 'nan'),
                          same_engaged_pins=int(ea == eb),
                          engaged_reduced=len(ea), engaged_fe=len(eb),
                          reduced_dofs=a['dofs'], fe_dofs=b['dofs']))
