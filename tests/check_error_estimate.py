@@ -33,6 +33,9 @@ FILE.prm is the new-user case of issue #15: the 2D slab, modified profile,
 * with Mesh/Target accuracy 0.01 from Contact refinements 0: it reports
   the target reached, and lands within 1 % of the reference in K_secant,
   K_tangent and every pin force (of the largest);
+* the Target accuracy 0.01 run again on the distributed mesh
+  (Mesh/Triangulation = distributed): the same DoFs, K, pin forces and
+  estimates within 1e-8;
 * the default run again with the memory the run may use
   (CYCLOID_AVAILABLE_MEMORY_MB) set 1 MB above the cost model's estimate
   for its first mesh: that mesh is solved, its first refinement would not
@@ -211,6 +214,19 @@ def main():
     for q, e in errors((st, pt), ref[:2]).items():
         print("target 0.01 %-10s error %.3g %% (estimate %.3g %%)" % (q, 100 * e, 100 * estimates(st)[q]))
         check(e <= 0.01, "target run: %s off by %.3g from the reference" % (q, e))
+
+    # The same run on the distributed mesh: its coarser level coarsens and
+    # refines back the cells of every rank, and the target refines again.
+    sdist, pdist, _ = run(args.exe, text, args.work, "target-distributed",
+                          {"Target accuracy": 0.01, "Triangulation": "distributed"})
+    check(sdist["dofs"] == st["dofs"], "distributed target run: %s DoFs, not %s"
+          % (sdist["dofs"], st["dofs"]))
+    same = errors((sdist, pdist), (st, pt))
+    same.update({"estimate " + q: abs(e - estimates(st)[q])
+                 for q, e in estimates(sdist).items()})
+    print("target 0.01, distributed mesh against shared: largest difference %.2g"
+          % max(same.values()))
+    check(max(same.values()) <= 1e-8, "distributed target run differs: %s" % same)
     return verdict()
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The same quasi-static run on more ranks against a reference run.
 
-Usage: check_ranks.py FILE.prm EXECUTABLE REFERENCE_DIR NP [NP ...]
+Usage: check_ranks.py [--distributed] FILE.prm EXECUTABLE REFERENCE_DIR NP [NP ...]
 
 Runs FILE.prm on each NP ranks (oversubscribed where NP exceeds the cores)
 and compares its outputs with REFERENCE_DIR (the same prm's output on other
@@ -12,6 +12,11 @@ ranks, e.g. the 1-rank run of run_ranks.sh):
   nodes (`active_nodes` of pin_forces.csv);
 * the rotation, K_secant and K_tangent within 1e-8 (relative) and every pin
   force within 1e-8 of the state's largest (issue #14 item 3).
+
+With --distributed the runs hold the mesh on p4est (`Mesh/Triangulation =
+distributed`: each refined cell on one rank, contact nodes, master faces
+and ties gathered), against a reference on the shared mesh: the same
+answer, whatever holds the cells.
 
 The partition changes the AMG hierarchy and the order of the sums, so the
 answers differ at the level of CG's tolerance (1e-10), not by zero; the
@@ -60,13 +65,16 @@ def compare(ref, other):
     return d
 
 
-def prm_into(prm, work):
+def prm_into(prm, work, distributed=False):
     """A copy of @p prm that writes its CSV files, and no solution files,
-    into @p work; returns its path."""
+    into @p work (on a distributed mesh if @p distributed); returns its
+    path."""
     path = work + ".prm"
     with open(path, "w") as f:
         f.write(open(prm).read())
         f.write("\nset Output directory = %s\nset Write solution = false\n" % work)
+        if distributed:
+            f.write("subsection Mesh\n  set Triangulation = distributed\nend\n")
     return path
 
 
@@ -79,24 +87,29 @@ def mpirun_flags(ranks):
     return flags
 
 
-def run(prm, exe, ranks, work):
+def run(prm, exe, ranks, work, distributed=False):
     """Run @p prm on @p ranks ranks with its output in @p work."""
-    path = prm_into(prm, work)
+    path = prm_into(prm, work, distributed)
     p = subprocess.run(["mpirun"] + mpirun_flags(ranks) + ["-np", str(ranks), exe, path],
                        capture_output=True, text=True)
     return p.returncode, p.stdout[-2000:] + p.stderr[-2000:]
 
 
 def main():
-    prm, exe, reference = sys.argv[1:4]
+    args = sys.argv[1:]
+    distributed = "--distributed" in args
+    if distributed:
+        args.remove("--distributed")
+    prm, exe, reference = args[:3]
     ref = read(reference)
-    for ranks in [int(n) for n in sys.argv[4:]]:
-        work = os.path.abspath("np%d" % ranks)
-        rc, tail = run(prm, exe, ranks, work)
+    for ranks in [int(n) for n in args[3:]]:
+        work = os.path.abspath(("distributed-np%d" if distributed else "np%d") % ranks)
+        rc, tail = run(prm, exe, ranks, work, distributed)
         if not check(rc == 0, f"{ranks} ranks: exit {rc}\n{tail}"):
             continue
         d = compare(ref, read(work))
-        print(f"{ranks} ranks against {reference}: beta {d['beta']:.1e}, "
+        mesh = "distributed mesh, " if distributed else ""
+        print(f"{mesh}{ranks} ranks against {reference}: beta {d['beta']:.1e}, "
               f"K_secant {d['K_secant']:.1e}, K_tangent {d['K_tangent']:.1e}, "
               f"pin forces {d['pin_forces']:.1e} of the largest, "
               f"same active set {bool(d['same_active_set'])}")

@@ -1,3 +1,4 @@
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/fe/fe_values.h>
@@ -39,6 +40,34 @@ namespace cycloid
         std::vector<dealii::Tensor<1, dim>> normals;
         std::vector<std::map<dealii::types::global_dof_index, double>>
           coefficients;
+
+        /** On a distributed mesh each rank integrated its own slave faces:
+         * add up every rank's integrals (in rank order, so that every rank
+         * gets the same sums). */
+        void
+        sum_over_ranks(const MPI_Comm comm)
+        {
+          std::vector<double> packed;
+          for (unsigned int i = 0; i < normals.size(); ++i)
+            for (const auto &[m, value] : coefficients[i])
+              packed.insert(packed.end(), {double(i), double(m), value});
+          std::vector<double> flat;
+          for (const auto &n : normals)
+            for (unsigned int c = 0; c < dim; ++c)
+              flat.push_back(n[c]);
+          dealii::Utilities::MPI::sum(flat, comm, flat);
+          for (unsigned int i = 0; i < normals.size(); ++i)
+            for (unsigned int c = 0; c < dim; ++c)
+              normals[i][c] = flat[i * dim + c];
+          for (auto &c : coefficients)
+            c.clear();
+          for (const auto &part :
+               dealii::Utilities::MPI::all_gather(comm, packed))
+            for (std::size_t k = 0; k < part.size(); k += 3)
+              coefficients[static_cast<unsigned int>(part[k])]
+                          [static_cast<dealii::types::global_dof_index>(
+                            part[k + 1])] += part[k + 2];
+        }
       };
 
       /** The nodes of slave face @p f: the cell-local indices of their x
@@ -216,6 +245,8 @@ namespace cycloid
                                  A,
                                  sums);
         }
+      if (search.distributed())
+        sums.sum_over_ranks(search.communicator());
       for (unsigned int i = 0; i < slaves.size(); ++i)
         {
           SlaveNode<dim> &s = slaves[i];

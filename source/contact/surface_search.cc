@@ -1,9 +1,11 @@
 #include <deal.II/base/exceptions.h>
 
 #include <deal.II/base/geometry_info.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/quadrature_lib.h>
 
+#include <deal.II/distributed/tria_base.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping.h>
 
@@ -54,11 +56,162 @@ namespace cycloid
         return std::atan2(x[1] - c[1], x[0] - c[0]);
       }
 
+      /** Every rank's @p local, concatenated in rank order. */
+      std::vector<double>
+      gather_all(const MPI_Comm comm, const std::vector<double> &local)
+      {
+        std::vector<double> all;
+        for (const auto &part : dealii::Utilities::MPI::all_gather(comm, local))
+          all.insert(all.end(), part.begin(), part.end());
+        return all;
+      }
+
+      /** A point's coordinates appended to @p out. */
+      template <int dim>
+      void
+      pack_point(const dealii::Point<dim> &x, std::vector<double> &out)
+      {
+        for (unsigned int c = 0; c < dim; ++c)
+          out.push_back(x[c]);
+      }
+
+      /** The point at @p in, which then moves past it. */
+      template <int dim>
+      dealii::Point<dim>
+      unpack_point(const double *&in)
+      {
+        dealii::Point<dim> x;
+        for (unsigned int c = 0; c < dim; ++c)
+          x[c] = *in++;
+        return x;
+      }
+
       /** |a| with a reduced to [-pi, pi]. */
       double
       angular_distance(const double a)
       {
         return std::abs(std::remainder(a, 2. * dealii::numbers::PI));
+      }
+
+
+      /** Face @p f of @p cell (of a cylinder centred at @p c) as data. */
+      template <int dim>
+      typename SurfaceSearch<dim>::MasterFace
+      master_face(
+        const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
+        const unsigned int                                            f,
+        const dealii::Point<2>                                       &c)
+      {
+        typename SurfaceSearch<dim>::MasterFace m;
+        m.face = f;
+        for (unsigned int v = 0; v < m.vertices.size(); ++v)
+          m.vertices[v] = cell->vertex(
+            dealii::GeometryInfo<dim>::face_to_cell_vertices(f, v));
+        m.dofs.resize(cell->get_fe().n_dofs_per_cell());
+        cell->get_dof_indices(m.dofs);
+        // (centre angle, half angular width, z min, z max)
+        const double a0 = angle(cell->face(f)->center(), c);
+        m.box           = {{a0, 0., 1e300, -1e300}};
+        for (const unsigned int v : cell->face(f)->vertex_indices())
+          {
+            const auto x = cell->face(f)->vertex(v);
+            m.box[1] = std::max(m.box[1], angular_distance(angle(x, c) - a0));
+            m.box[2] = std::min(m.box[2], x[dim - 1]);
+            m.box[3] = std::max(m.box[3], x[dim - 1]);
+          }
+        return m;
+      }
+
+      /** Every rank's master faces @p mine (per cylinder), in rank order.
+       * Record: cylinder, face, vertices, box, number of DoFs, DoFs (DoF
+       * indices are exact in a double below 2^53). */
+      template <int dim>
+      std::vector<std::vector<typename SurfaceSearch<dim>::MasterFace>>
+      gather_master_faces(
+        const std::vector<std::vector<typename SurfaceSearch<dim>::MasterFace>>
+                      &mine,
+        const MPI_Comm comm)
+      {
+        std::vector<double> packed;
+        for (unsigned int j = 0; j < mine.size(); ++j)
+          for (const auto &m : mine[j])
+            {
+              packed.push_back(j);
+              packed.push_back(m.face);
+              for (const auto &x : m.vertices)
+                pack_point<dim>(x, packed);
+              packed.insert(packed.end(), m.box.begin(), m.box.end());
+              packed.push_back(m.dofs.size());
+              packed.insert(packed.end(), m.dofs.begin(), m.dofs.end());
+            }
+        const std::vector<double> all = gather_all(comm, packed);
+        std::vector<std::vector<typename SurfaceSearch<dim>::MasterFace>> faces(
+          mine.size());
+        const double *in = all.data();
+        while (in < all.data() + all.size())
+          {
+            typename SurfaceSearch<dim>::MasterFace m;
+            const auto j = static_cast<unsigned int>(*in++);
+            m.face       = static_cast<unsigned int>(*in++);
+            for (auto &x : m.vertices)
+              x = unpack_point<dim>(in);
+            for (auto &b : m.box)
+              b = *in++;
+            m.dofs.resize(static_cast<std::size_t>(*in++));
+            for (auto &d : m.dofs)
+              d = static_cast<dealii::types::global_dof_index>(*in++);
+            faces[j].push_back(std::move(m));
+          }
+        return faces;
+      }
+
+
+      /** Every rank's slave nodes @p mine, merged: a node met on several
+       * ranks' faces sums their weights (and is hanging if any rank says
+       * so); ordered by x DoF. */
+      template <int dim>
+      std::vector<SlaveNode<dim>>
+      gather_slave_nodes(const std::vector<SlaveNode<dim>> &mine,
+                         const MPI_Comm                     comm)
+      {
+        std::vector<double> packed;
+        for (const auto &s : mine)
+          {
+            packed.insert(packed.end(), s.dofs.begin(), s.dofs.end());
+            packed.push_back(s.body);
+            packed.push_back(s.cylinder);
+            pack_point<dim>(s.position, packed);
+            pack_point<dim>(dealii::Point<dim>(s.normal), packed);
+            packed.push_back(s.gap0);
+            packed.push_back(s.weight);
+            packed.push_back(s.hanging);
+          }
+        const std::vector<double> all = gather_all(comm, packed);
+        std::map<dealii::types::global_dof_index, SlaveNode<dim>> merged;
+        const double *in = all.data();
+        while (in < all.data() + all.size())
+          {
+            SlaveNode<dim> s;
+            for (auto &d : s.dofs)
+              d = static_cast<dealii::types::global_dof_index>(*in++);
+            s.body     = static_cast<dealii::types::material_id>(*in++);
+            s.cylinder = static_cast<unsigned int>(*in++);
+            s.position = unpack_point<dim>(in);
+            s.normal   = unpack_point<dim>(in);
+            s.gap0     = *in++;
+            s.weight   = *in++;
+            s.hanging  = *in++ != 0.;
+            const auto [it, added] = merged.emplace(s.dofs[0], s);
+            if (!added)
+              {
+                it->second.weight += s.weight;
+                it->second.hanging = it->second.hanging || s.hanging;
+              }
+          }
+        std::vector<SlaveNode<dim>> slaves;
+        for (auto &entry : merged)
+          slaves.push_back(std::move(entry.second));
+        return slaves;
       }
     } // namespace
 
@@ -69,6 +222,26 @@ namespace cycloid
       const elasticity::LinearElasticity<dim> &problem)
       : problem(problem)
     {}
+
+
+
+    template <int dim>
+    bool
+    SurfaceSearch<dim>::distributed() const
+    {
+      return dynamic_cast<
+               const dealii::parallel::DistributedTriangulationBase<dim> *>(
+               &problem.dof_handler().get_triangulation()) != nullptr;
+    }
+
+
+
+    template <int dim>
+    MPI_Comm
+    SurfaceSearch<dim>::communicator() const
+    {
+      return problem.dof_handler().get_triangulation().get_communicator();
+    }
 
 
 
@@ -156,8 +329,10 @@ namespace cycloid
       const dealii::types::boundary_id                       surface) const
     {
       std::vector<Face> faces;
+      const bool        own_only = distributed();
       for (const auto &cell : problem.dof_handler().active_cell_iterators())
-        if (body_matches(cell->material_id()))
+        if ((!own_only || cell->is_locally_owned()) &&
+            body_matches(cell->material_id()))
           for (const unsigned int f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
                 cell->face(f)->boundary_id() == surface)
@@ -185,38 +360,26 @@ namespace cycloid
     SurfaceSearch<dim>::collect_master_faces()
     {
       master_faces.assign(masters.size(), {});
-      master_boxes.assign(masters.size(), {});
       if (!deformable && !with_ties)
         return;
       std::map<dealii::types::material_id, unsigned int> by_body;
       for (unsigned int j = 0; j < masters.size(); ++j)
         by_body[masters[j].body] = j;
+      const bool own_only = distributed();
       for (const auto &cell : problem.dof_handler().active_cell_iterators())
         {
           const auto it = by_body.find(cell->material_id());
-          if (it == by_body.end())
+          if (it == by_body.end() || (own_only && !cell->is_locally_owned()))
             continue;
           const unsigned int j = it->second;
-          const auto        &c = masters[j].centre;
           for (const unsigned int f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
                 cell->face(f)->boundary_id() == masters[j].surface)
-              {
-                master_faces[j].emplace_back(cell, f);
-                // (centre angle, half angular width, z min, z max)
-                const double          a0 = angle(cell->face(f)->center(), c);
-                std::array<double, 4> box{{a0, 0., 1e300, -1e300}};
-                for (const unsigned int v : cell->face(f)->vertex_indices())
-                  {
-                    const auto x = cell->face(f)->vertex(v);
-                    box[1] =
-                      std::max(box[1], angular_distance(angle(x, c) - a0));
-                    box[2] = std::min(box[2], x[dim - 1]);
-                    box[3] = std::max(box[3], x[dim - 1]);
-                  }
-                master_boxes[j].push_back(box);
-              }
+              master_faces[j].push_back(
+                master_face<dim>(cell, f, masters[j].centre));
         }
+      if (own_only)
+        master_faces = gather_master_faces<dim>(master_faces, communicator());
     }
 
 
@@ -224,7 +387,7 @@ namespace cycloid
     template <int dim>
     bool
     SurfaceSearch<dim>::unit_point_on_face(const unsigned int        j,
-                                           const Face               &face,
+                                           const MasterFace         &face,
                                            const dealii::Point<dim> &P,
                                            const double              theta,
                                            dealii::Point<dim>       &unit) const
@@ -233,8 +396,8 @@ namespace cycloid
       // its vertices on the cylinder: the manifold places refined vertices
       // and the mapping's support points uniformly in angle and z, so the
       // bilinear (linear in 2D) interpolation of (angle, z) is exact.
-      const MasterCylinder &m                           = masters[j];
-      const auto &[cell, f]                             = face;
+      const MasterCylinder             &m               = masters[j];
+      const unsigned int                f               = face.face;
       constexpr unsigned int            n_face_vertices = 1u << (dim - 1);
       std::array<unsigned int, dim - 1> axes;
       for (unsigned int a = 0, n = 0; a < dim; ++a)
@@ -246,11 +409,11 @@ namespace cycloid
         {
           const unsigned int cv =
             dealii::GeometryInfo<dim>::face_to_cell_vertices(f, v);
-          const auto x = cell->vertex(cv);
-          rel[v][0]    = m.radius * std::remainder(angle(x, m.centre) - theta,
+          const auto &x = face.vertices[v];
+          rel[v][0]     = m.radius * std::remainder(angle(x, m.centre) - theta,
                                                 2. * dealii::numbers::PI);
-          rel[v][1]    = dim == 3 ? x[dim - 1] - P[dim - 1] : 0.;
-          const auto u = dealii::GeometryInfo<dim>::unit_cell_vertex(cv);
+          rel[v][1]     = dim == 3 ? x[dim - 1] - P[dim - 1] : 0.;
+          const auto u  = dealii::GeometryInfo<dim>::unit_cell_vertex(cv);
           for (unsigned int a = 0; a < dim - 1; ++a)
             corner[v][a] = u[axes[a]];
         }
@@ -315,7 +478,7 @@ namespace cycloid
       for (unsigned int k = 0; k < master_faces[j].size(); ++k)
         {
           // Quick rejection by the face's (angle, z) box.
-          const auto &box = master_boxes[j][k];
+          const auto &box = master_faces[j][k].box;
           if (angular_distance(theta - box[0]) > box[1] + 1e-9 ||
               (dim == 3 &&
                (P[dim - 1] < box[2] - 1e-9 || P[dim - 1] > box[3] + 1e-9)))
@@ -323,10 +486,7 @@ namespace cycloid
           dealii::Point<dim> unit;
           if (!unit_point_on_face(j, master_faces[j][k], P, theta, unit))
             continue;
-          const auto &cell = master_faces[j][k].first;
-          std::vector<dealii::types::global_dof_index> indices(
-            fe.n_dofs_per_cell());
-          cell->get_dof_indices(indices);
+          const auto &indices = master_faces[j][k].dofs;
           for (auto &d : dofs)
             d.clear();
           for (auto &w : weights)
@@ -417,7 +577,8 @@ namespace cycloid
               slaves.push_back(s);
             }
         }
-      return slaves;
+      return distributed() ? gather_slave_nodes(slaves, communicator()) :
+                             slaves;
     }
 
 
@@ -429,6 +590,32 @@ namespace cycloid
       std::vector<TiedNode<dim>> ties;
       if (!with_ties)
         return ties;
+      for (const auto &[dofs, x] : tied_candidates())
+        {
+          const auto [nearest, d] = nearest_cylinder(masters, x);
+          const MasterCylinder &m = masters[nearest];
+          // R (x - c) / d rather than project()'s R ((x - c) / d): the
+          // tie code's order of operations since it was written, kept
+          // so that tied scenes reproduce their results bit for bit
+          // (CG amplifies a last-bit change to ~1e-11).
+          dealii::Point<dim> P = x;
+          for (unsigned int c = 0; c < 2; ++c)
+            P[c] = m.centre[c] + m.radius * (x[c] - m.centre[c]) / d;
+          TiedNode<dim> t;
+          t.dofs = dofs;
+          master_weights(nearest, P, t.masters, t.weights, "tied node");
+          ties.push_back(t);
+        }
+      return ties;
+    }
+
+
+
+    template <int dim>
+    std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,
+                          dealii::Point<dim>>>
+    SurfaceSearch<dim>::tied_candidates() const
+    {
       const auto &fe          = problem.finite_element();
       const auto &mapping     = problem.mapping();
       const auto &hanging     = problem.hanging_node_constraints();
@@ -436,7 +623,8 @@ namespace cycloid
       std::set<dealii::types::global_dof_index>    done;
       std::vector<dealii::types::global_dof_index> indices(
         fe.n_dofs_per_cell());
-      const auto faces = boundary_faces(
+      std::vector<double> packed;
+      const auto          faces = boundary_faces(
         [this](const dealii::types::material_id m) { return m == tied_body; },
         tied_surface);
       for (const auto &[cell, f] : faces)
@@ -449,25 +637,38 @@ namespace cycloid
               if (component != 0 || !done.insert(indices[i]).second ||
                   hanging.is_constrained(indices[i]))
                 continue;
-              const dealii::Point<dim> x =
-                mapping.transform_unit_to_real_cell(cell, unit_points[node]);
-              const auto [nearest, d] = nearest_cylinder(masters, x);
-              const MasterCylinder &m = masters[nearest];
-              // R (x - c) / d rather than project()'s R ((x - c) / d): the
-              // tie code's order of operations since it was written, kept
-              // so that tied scenes reproduce their results bit for bit
-              // (CG amplifies a last-bit change to ~1e-11).
-              dealii::Point<dim> P = x;
-              for (unsigned int c = 0; c < 2; ++c)
-                P[c] = m.centre[c] + m.radius * (x[c] - m.centre[c]) / d;
-              TiedNode<dim> t;
               for (unsigned int c = 0; c < dim; ++c)
-                t.dofs[c] = indices[fe.component_to_system_index(c, node)];
-              master_weights(nearest, P, t.masters, t.weights, "tied node");
-              ties.push_back(t);
+                packed.push_back(
+                  indices[fe.component_to_system_index(c, node)]);
+              pack_point<dim>(
+                mapping.transform_unit_to_real_cell(cell, unit_points[node]),
+                packed);
             }
         }
-      return ties;
+      // A distributed mesh: every rank's, each node once, by x DoF.
+      if (distributed())
+        packed = gather_all(communicator(), packed);
+      std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,
+                            dealii::Point<dim>>>
+                                                candidates;
+      std::set<dealii::types::global_dof_index> seen;
+      for (const double *in = packed.data();
+           in < packed.data() + packed.size();)
+        {
+          std::array<dealii::types::global_dof_index, dim> dofs;
+          for (auto &d : dofs)
+            d = static_cast<dealii::types::global_dof_index>(*in++);
+          const dealii::Point<dim> x = unpack_point<dim>(in);
+          if (seen.insert(dofs[0]).second)
+            candidates.emplace_back(dofs, x);
+        }
+      if (distributed())
+        std::sort(candidates.begin(),
+                  candidates.end(),
+                  [](const auto &a, const auto &b) {
+                    return a.first[0] < b.first[0];
+                  });
+      return candidates;
     }
 
 

@@ -95,6 +95,8 @@ namespace cycloid
         {
           for (const auto &cell : tria.active_cell_iterators())
             {
+              if (cell->is_artificial())
+                continue;
               // A cell is near a contact point if the point lies within
               // radius of the cell's bounding circle.
               const auto   c = cell->center();

@@ -153,6 +153,20 @@ namespace cycloid
                           "(Geometry/Number of crank holes = 0): crank holes "
                           "break the discs' tooth symmetry and with them the "
                           "exact periodicity of the stage.");
+        prm.declare_entry(
+          "Triangulation",
+          "shared",
+          Selection("shared|distributed"),
+          "How the mesh is held on several MPI ranks. shared: every rank "
+          "holds every cell (parallel::shared::Triangulation), METIS "
+          "partitions them. distributed: p4est "
+          "(parallel::distributed::Triangulation) with the gmsh mesh as "
+          "its coarse grid on every rank and each refined cell on one rank "
+          "(and a ghost layer), so the refined mesh and the DoF handler "
+          "divide over the ranks; contact nodes, master faces and ties are "
+          "gathered on every rank. Same results to round-off (the "
+          "partition differs). Quasi-static and phase-sweep runs; FE runs "
+          "only [-].");
         prm.declare_entry("Write msh",
                           "false",
                           Bool(),
@@ -183,6 +197,7 @@ namespace cycloid
         refine_loaded_side_only =
           prm.get("Contact refinement side") == "loaded";
         write_msh       = prm.get_bool("Write msh");
+        distributed     = prm.get("Triangulation") == "distributed";
         degree          = prm.get_integer("Polynomial degree");
         periodic        = prm.get_bool("Periodic meshes");
         adaptive_cycles = prm.get_integer("Adaptive refinement cycles");

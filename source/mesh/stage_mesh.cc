@@ -2,6 +2,8 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/distributed/tria.h>
 #include <deal.II/distributed/tria_base.h>
 
 #include <cycloid/mesh/gmsh_sections.h>
@@ -125,6 +127,29 @@ namespace cycloid
     }
 
 
+
+    template <int dim>
+    std::unique_ptr<dealii::parallel::TriangulationBase<dim>>
+    create_triangulation(const MeshParameters &settings, const MPI_Comm comm)
+    {
+      const auto smoothing =
+        dealii::Triangulation<dim>::limit_level_difference_at_vertices;
+      if (settings.distributed)
+        return std::make_unique<
+          dealii::parallel::distributed::Triangulation<dim>>(comm, smoothing);
+      return std::make_unique<dealii::parallel::shared::Triangulation<dim>>(
+        comm,
+        smoothing,
+        false,
+        dealii::parallel::shared::Triangulation<dim>::partition_metis);
+    }
+
+
+
+    template std::unique_ptr<dealii::parallel::TriangulationBase<2>>
+    create_triangulation<2>(const MeshParameters &, const MPI_Comm);
+    template std::unique_ptr<dealii::parallel::TriangulationBase<3>>
+    create_triangulation<3>(const MeshParameters &, const MPI_Comm);
 
     template void
     create_stage_mesh<2>(const MeshSettings &,

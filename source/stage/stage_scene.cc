@@ -139,10 +139,7 @@ namespace cycloid
                pcout,
                dealii::TimerOutput::never,
                dealii::TimerOutput::wall_times)
-      , tria(comm,
-             dealii::Triangulation<dim>::limit_level_difference_at_vertices,
-             false,
-             dealii::parallel::shared::Triangulation<dim>::partition_metis)
+      , tria(mesh::create_triangulation<dim>(settings.mesh, comm))
     {
       AssertThrow(settings.scene.load_introduction !=
                       Scene::LoadIntroduction::crank_holes ||
@@ -167,9 +164,9 @@ namespace cycloid
     StageScene<dim>::make_grid(const mesh::MeshRequest &request)
     {
       dealii::TimerOutput::Scope t(timing, "make grid");
-      mesh::create_stage_mesh(settings.mesh_settings(), request, tria);
+      mesh::create_stage_mesh(settings.mesh_settings(), request, *tria);
       pcout << "  mesh: " << dim << "D, " << settings.scene.n_discs
-            << " disc(s), " << tria.n_global_active_cells() << " cells"
+            << " disc(s), " << tria->n_global_active_cells() << " cells"
             << std::endl;
     }
 
@@ -198,7 +195,7 @@ namespace cycloid
       cs.schur_complement     = c.use_schur_complement(settings.one_operator);
       cs.schur_columns        = c.schur_columns;
       contact                 = std::make_unique<contact::ContactProblem<dim>>(
-        tria, settings.mesh.degree, materials, cs);
+        *tria, settings.mesh.degree, materials, cs);
       // Every run times the active set's stages (assembly, preconditioner,
       // solves, updates) beside the scene's own.
       contact->set_timer(timing);
@@ -262,8 +259,12 @@ namespace cycloid
         fe.n_dofs_per_cell());
       std::vector<dealii::types::global_dof_index>      fixed;
       std::map<dealii::types::global_dof_index, double> load;
+      // Every cell this rank holds: the supports and loads of its locally
+      // relevant DoFs (the constraints keep only those).
       for (const auto &cell : el.dof_handler().active_cell_iterators())
         {
+          if (cell->is_artificial())
+            continue;
           cell->get_dof_indices(indices);
           pin_model->held_dofs(cell, indices, values, fixed);
           if (!ids::is_disc(cell->material_id()))
@@ -476,7 +477,7 @@ namespace cycloid
     unsigned int
     StageScene<dim>::contact_level() const
     {
-      return tria.n_global_levels() - 1 - settings.mesh.global_refinements;
+      return tria->n_global_levels() - 1 - settings.mesh.global_refinements;
     }
 
 
@@ -503,9 +504,10 @@ namespace cycloid
       for (const unsigned int i : contact->active_set())
         points.push_back(contact->slave_nodes()[i].position);
       unsigned int flagged = 0;
-      for (const auto &cell : tria.active_cell_iterators())
+      for (const auto &cell : tria->active_cell_iterators())
         {
-          if (static_cast<unsigned int>(cell->level()) >= cap)
+          if (cell->is_artificial() ||
+              static_cast<unsigned int>(cell->level()) >= cap)
             continue;
           for (const auto &p : points)
             if (mesh::near_contact_node<dim>(cell, p))
@@ -517,15 +519,15 @@ namespace cycloid
         }
       if (flagged == 0)
         return false;
-      tria.prepare_coarsening_and_refinement();
+      tria->prepare_coarsening_and_refinement();
       if (!refinement_fits())
         {
-          for (const auto &cell : tria.active_cell_iterators())
+          for (const auto &cell : tria->active_cell_iterators())
             cell->clear_refine_flag();
           return false;
         }
       const auto snapshot = contact->active_set_snapshot();
-      tria.execute_coarsening_and_refinement();
+      tria->execute_coarsening_and_refinement();
       rebuild(snapshot);
       return true;
     }
@@ -536,12 +538,14 @@ namespace cycloid
     bool
     StageScene<dim>::refinement_fits()
     {
-      // Every rank holds the whole mesh and the same flags.
+      // Each cell counted by its owner (a shared mesh has the same flags
+      // on every rank, a distributed one on the owner's cells).
       std::size_t flagged = 0;
-      for (const auto &cell : tria.active_cell_iterators())
-        if (cell->refine_flag_set())
+      for (const auto &cell : tria->active_cell_iterators())
+        if (cell->is_locally_owned() && cell->refine_flag_set())
           ++flagged;
-      const double cells = tria.n_global_active_cells();
+      flagged            = dealii::Utilities::MPI::sum(flagged, comm);
+      const double cells = tria->n_global_active_cells();
       const double grown = (cells + ((1u << dim) - 1) * flagged) / cells;
       const auto  &m     = settings.mesh;
       const auto   dofs  = static_cast<dealii::types::global_dof_index>(
@@ -600,16 +604,24 @@ namespace cycloid
       // The finest cells all lie at the contacts (only the contact
       // refinements reach that level); their parents are remembered, so
       // that refining those again restores the mesh exactly.
-      const unsigned int top = tria.n_global_levels() - 1;
-      for (const auto &cell : tria.active_cell_iterators())
-        if (static_cast<unsigned int>(cell->level()) == top)
+      // On a distributed mesh each rank knows its own cells' parents, and
+      // a parent may move to another rank with the new partition: every
+      // rank gets all of them.
+      const unsigned int top = tria->n_global_levels() - 1;
+      for (const auto &cell : tria->active_cell_iterators())
+        if (!cell->is_artificial() &&
+            static_cast<unsigned int>(cell->level()) == top)
           cell->set_coarsen_flag();
-      tria.prepare_coarsening_and_refinement();
+      tria->prepare_coarsening_and_refinement();
+      std::vector<dealii::CellId::binary_type> mine;
+      for (const auto &cell : tria->active_cell_iterators())
+        if (cell->is_locally_owned() && cell->coarsen_flag_set())
+          mine.push_back(cell->parent()->id().template to_binary<dim>());
       std::set<dealii::CellId> parents;
-      for (const auto &cell : tria.active_cell_iterators())
-        if (cell->coarsen_flag_set())
-          parents.insert(cell->parent()->id());
-      tria.execute_coarsening_and_refinement();
+      for (const auto &part : dealii::Utilities::MPI::all_gather(comm, mine))
+        for (const auto &id : part)
+          parents.insert(dealii::CellId(id));
+      tria->execute_coarsening_and_refinement();
       return parents;
     }
 
@@ -619,10 +631,10 @@ namespace cycloid
     void
     StageScene<dim>::refine_cells(const std::set<dealii::CellId> &cells)
     {
-      for (const auto &cell : tria.active_cell_iterators())
-        if (cells.count(cell->id()) > 0)
+      for (const auto &cell : tria->active_cell_iterators())
+        if (!cell->is_artificial() && cells.count(cell->id()) > 0)
           cell->set_refine_flag();
-      tria.execute_coarsening_and_refinement();
+      tria->execute_coarsening_and_refinement();
     }
 
 
@@ -635,9 +647,9 @@ namespace cycloid
       SolveCost                        &cost)
     {
       const unsigned int n = mesh::ErrorControl::coarser_levels;
-      if (tria.n_global_levels() - 1 < settings.mesh.global_refinements + n)
+      if (tria->n_global_levels() - 1 < settings.mesh.global_refinements + n)
         return false;
-      const auto n_cells  = tria.n_global_active_cells();
+      const auto n_cells  = tria->n_global_active_cells();
       const auto original = contact->active_set_snapshot();
       std::vector<std::set<dealii::CellId>> parents;
       {
@@ -683,7 +695,7 @@ namespace cycloid
           refine_cells(parents[k]);
           rebuild(snapshot);
         }
-      AssertThrow(tria.n_global_active_cells() == n_cells,
+      AssertThrow(tria->n_global_active_cells() == n_cells,
                   dealii::ExcMessage("the error estimate's coarser levels did "
                                      "not refine back to the mesh asked for."));
       return solved;

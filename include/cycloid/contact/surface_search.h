@@ -1,6 +1,7 @@
 #ifndef cycloid_contact_surface_search_h
 #define cycloid_contact_surface_search_h
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
@@ -27,9 +28,13 @@ namespace cycloid
      * the projection of a point onto a cylinder and the master body's
      * shape-function weights there, and the tied nodes.
      *
-     * Works on a shared triangulation without artificial cells: every rank
-     * sees every cell and its DoF indices, so every rank finds the same
-     * nodes in the same order.
+     * Every rank holds the same nodes, master faces and ties. On a shared
+     * triangulation (no artificial cells) every rank finds them all from
+     * its own copy of the mesh, in the order of the cell iteration. On a
+     * distributed one (p4est) each rank finds those of its locally owned
+     * cells and the lists are gathered (slave nodes met on several ranks
+     * summed, then ordered by DoF): the surfaces are a small fraction of
+     * the mesh, and a slave's master face may live on any rank.
      */
     template <int dim>
     class SurfaceSearch
@@ -43,6 +48,22 @@ namespace cycloid
       using Face =
         std::pair<typename dealii::DoFHandler<dim>::active_cell_iterator,
                   unsigned int>;
+
+      /** A face of a master cylinder's surface as data, so that every rank
+       * holds all of them whoever owns the cell: its face number, its
+       * vertices (in the cell's face order), its cell's DoF indices and its
+       * box of centre angle, half angular width and z range. */
+      struct MasterFace
+      {
+        /** Face number in its cell. */
+        unsigned int face = 0;
+        /** The face's vertices, GeometryInfo::face_to_cell_vertices order. */
+        std::array<dealii::Point<dim>, (1u << (dim - 1))> vertices;
+        /** DoF indices of the face's cell. */
+        std::vector<dealii::types::global_dof_index> dofs;
+        /** Centre angle, half angular width, z min, z max. */
+        std::array<double, 4> box;
+      };
 
       /** Search on the DoFs, mapping and hanging nodes of @p problem (held
        * by reference; it must outlive the search). */
@@ -88,7 +109,9 @@ namespace cycloid
       std::vector<TiedNode<dim>>
       find_tied_nodes() const;
 
-      /** The slave faces in the order of the cell iteration. */
+      /** This rank's slave faces in the order of the cell iteration: all
+       * of them on a shared mesh, the locally owned ones on a distributed
+       * mesh (see distributed()). */
       std::vector<Face>
       slave_faces() const;
 
@@ -137,6 +160,16 @@ namespace cycloid
         return deformable;
       }
 
+      /** Whether the mesh is distributed: each rank holds its own cells
+       * and a ghost layer, and what is found on the faces of its cells
+       * must be summed over the ranks (e.g. mortar integrals). */
+      bool
+      distributed() const;
+
+      /** The communicator of the mesh. */
+      MPI_Comm
+      communicator() const;
+
       /** The elasticity problem searched. */
       const elasticity::LinearElasticity<dim> &
       elasticity() const
@@ -145,18 +178,24 @@ namespace cycloid
       }
 
     private:
-      /** The boundary faces with id @p surface of the cells for which
-       * @p body_matches(material id) holds. */
+      /** The boundary faces with id @p surface of this rank's cells (see
+       * slave_faces()) for which @p body_matches(material id) holds. */
       std::vector<Face>
       boundary_faces(
         const std::function<bool(dealii::types::material_id)> &body_matches,
         const dealii::types::boundary_id                       surface) const;
 
+      /** The nodes of the tied surface that are not hanging, each once:
+       * their DoFs and positions (every rank's on a distributed mesh). */
+      std::vector<std::pair<std::array<dealii::types::global_dof_index, dim>,
+                            dealii::Point<dim>>>
+      tied_candidates() const;
+
       /** Unit-cell point of @p P on master face @p face of cylinder @p j,
        * if the face holds it (@p theta: the angle of P). */
       bool
       unit_point_on_face(const unsigned int        j,
-                         const Face               &face,
+                         const MasterFace         &face,
                          const dealii::Point<dim> &P,
                          const double              theta,
                          dealii::Point<dim>       &unit) const;
@@ -173,9 +212,7 @@ namespace cycloid
       Placement                            placement;
 
       /** Per cylinder: the faces of its surface. */
-      std::vector<std::vector<Face>> master_faces;
-      /** Per master face: centre angle, half angular width, z range. */
-      std::vector<std::vector<std::array<double, 4>>> master_boxes;
+      std::vector<std::vector<MasterFace>> master_faces;
     };
   } // namespace contact
 } // namespace cycloid

@@ -114,6 +114,9 @@ namespace cycloid
       bool periodic = true;
       /** Write the gmsh mesh (with physical groups) as stage.msh. */
       bool write_msh = false;
+      /** Hold the mesh on p4est (each refined cell on one rank) rather than
+       * on every rank. */
+      bool distributed = false;
 
       /** Declare subsection `Mesh`. */
       static void

@@ -1,6 +1,7 @@
 #ifndef cycloid_mesh_stage_mesh_h
 #define cycloid_mesh_stage_mesh_h
 
+#include <deal.II/distributed/tria_base.h>
 #include <deal.II/grid/tria.h>
 
 #include <cycloid/mesh/contact_refinement.h>
@@ -9,6 +10,8 @@
 #include <cycloid/mesh/manifolds.h>
 #include <cycloid/mesh/mesh_request.h>
 #include <cycloid/mesh/mesh_statistics.h>
+
+#include <memory>
 
 namespace cycloid
 {
@@ -37,6 +40,18 @@ namespace cycloid
     create_stage_mesh(const MeshSettings         &settings,
                       const MeshRequest          &request,
                       dealii::Triangulation<dim> &tria);
+
+    /**
+     * @brief An empty triangulation on @p comm as `Mesh/Triangulation` asks:
+     * parallel::shared::Triangulation partitioned by METIS (every rank holds
+     * every cell), or parallel::distributed::Triangulation (p4est: the
+     * coarse grid on every rank, each refined cell on one rank and a ghost
+     * layer). Both smooth the levels at vertices (2:1 across vertices, as
+     * p4est balances).
+     */
+    template <int dim>
+    std::unique_ptr<dealii::parallel::TriangulationBase<dim>>
+    create_triangulation(const MeshParameters &settings, const MPI_Comm comm);
   } // namespace mesh
 } // namespace cycloid
 

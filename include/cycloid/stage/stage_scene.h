@@ -4,7 +4,7 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
-#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/distributed/tria_base.h>
 #include <deal.II/grid/cell_id.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -401,14 +401,15 @@ namespace cycloid
       /** Crank angle of the mesh [rad]. */
       const double psi_mesh;
       /** Crank angle of the discs' placement [rad]. */
-      double                                        psi;
-      dealii::ConditionalOStream                    pcout;
-      mutable dealii::TimerOutput                   timing;
-      dealii::parallel::shared::Triangulation<dim>  tria;
-      std::unique_ptr<contact::PinModel<dim>>       pin_model;
-      std::unique_ptr<contact::ContactProblem<dim>> contact;
-      dealii::TrilinosWrappers::MPI::Vector         rotation;
-      bool                                          warm = false;
+      double                      psi;
+      dealii::ConditionalOStream  pcout;
+      mutable dealii::TimerOutput timing;
+      /** The mesh: shared or distributed (`Mesh/Triangulation`). */
+      std::unique_ptr<dealii::parallel::TriangulationBase<dim>> tria;
+      std::unique_ptr<contact::PinModel<dim>>                   pin_model;
+      std::unique_ptr<contact::ContactProblem<dim>>             contact;
+      dealii::TrilinosWrappers::MPI::Vector                     rotation;
+      bool                                                      warm = false;
       /** The load of the state the active set comes from. */
       double warm_load = 0;
       /** Why the current state's coarser level failed (empty: it did
