@@ -3,7 +3,8 @@
 results agree, and how does each rank's peak memory fall with the ranks?
 
 Usage: benchmarks/ranks/run.py [--case NAME[,NAME]] [--ranks 1,2,4,8]
-           [--repeat K] [--exe EXE] [--out DIR] [--csv NAME]
+           [--mesh shared[,distributed]] [--repeat K] [--exe EXE]
+           [--out DIR] [--csv NAME]
 
 Cases (prm files of the repository, run as they are, no VTU output):
   3d-one-disc    tests/runs/quasi-static-3d.prm: one disc, elastic pins on
@@ -15,6 +16,11 @@ Cases (prm files of the repository, run as they are, no VTU output):
   3d-seed        prm/quasi-static-3d.prm: the 3D seed case, 1.5 M DoFs, one
                  state (not in the default list: about 20 minutes on 2
                  and 4 ranks; run it with --case 3d-seed --ranks 2,4)
+
+--mesh picks `Mesh/Triangulation`: shared (every rank holds every cell)
+or distributed (p4est: each refined cell on one rank); each case runs on
+every mesh given, the rank counts within, and every run is compared with
+the case's first run.
 
 More ranks than the machine's cores run oversubscribed (--oversubscribe):
 that checks the answers, not the speed. Each rank runs under GNU time, so
@@ -52,11 +58,12 @@ CASES = {
 WORK = "/tmp/cycloid-ranks"
 
 
-def run(case, ranks, exe):
-    """Run CASES[case] on @p ranks ranks; return the whole command's wall
-    time, every rank's peak RSS [MB] and the output directory."""
-    out = os.path.join(WORK, "%s-np%d" % (case, ranks))
-    prm = prm_into(os.path.join(ROOT, CASES[case]), out)
+def run(case, ranks, exe, mesh):
+    """Run CASES[case] on @p ranks ranks on the @p mesh triangulation;
+    return the whole command's wall time, every rank's peak RSS [MB] and
+    the output directory."""
+    out = os.path.join(WORK, "%s-%s-np%d" % (case, mesh, ranks))
+    prm = prm_into(os.path.join(ROOT, CASES[case]), out, mesh == "distributed")
     load = os.getloadavg()[0]
     # One file per rank: the ranks' stderr lines interleave.
     peak_file = out + ".peak."
@@ -76,13 +83,15 @@ def run(case, ranks, exe):
     return wall, peaks, load, out
 
 
-def measure(case, n, exe, ref):
-    """Run @p case on @p n ranks; its row of the CSV and its results."""
-    wall, peaks, load, out = run(case, n, exe)
+def measure(case, n, exe, ref, mesh):
+    """Run @p case on @p n ranks on the @p mesh triangulation; its row of
+    the CSV and its results."""
+    wall, peaks, load, out = run(case, n, exe, mesh)
     result = read(out)
     d = compare(ref or result, result)
     states = result[0]
-    row = {"case": case, "ranks": n, "dofs": states[0]["dofs"],
+    row = {"case": case, "triangulation": mesh, "ranks": n,
+           "dofs": states[0]["dofs"],
            "states": len(states), "load_average": round(load, 2),
            "wall_s": wall,
            "peak_memory_MB": float(states[-1]["peak_memory_MB"]),
@@ -94,10 +103,10 @@ def measure(case, n, exe, ref):
            "d_beta": d["beta"], "d_K_secant": d["K_secant"],
            "d_K_tangent": d["K_tangent"], "d_pin_forces": d["pin_forces"],
            "same_active_set": d["same_active_set"]}
-    print("  %-12s np%d: %s DoFs, %.1f s (load %.2f before), ranks' peak "
+    print("  %-12s %s np%d: %s DoFs, %.1f s (load %.2f before), ranks' peak "
           "%.0f MB largest, %.0f MB mean (sum %.0f); against the first run: "
           "beta %.1e, K_sec %.1e, K_tan %.1e, pins %.1e, same set %d" %
-          (case, n, row["dofs"], wall, load, row["largest_rank_MB"],
+          (case, mesh, n, row["dofs"], wall, load, row["largest_rank_MB"],
            row["mean_rank_MB"], row["peak_memory_MB"], d["beta"],
            d["K_secant"], d["K_tangent"], d["pin_forces"],
            d["same_active_set"]), flush=True)
@@ -108,6 +117,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--case", default="3d-one-disc,3d-housing,3d-290k")
     ap.add_argument("--ranks", default="1,2,4,8")
+    ap.add_argument("--mesh", default="shared",
+                    help="Mesh/Triangulation values, comma separated")
     ap.add_argument("--repeat", type=int, default=1,
                     help="run the rank counts this many times, interleaved")
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "cycloid-contact"))
@@ -119,16 +130,22 @@ def main():
     rows = []
     for case in args.case.split(","):
         ref = None
-        for k in range(args.repeat):
-            for n in [int(x) for x in args.ranks.split(",")]:
-                row, result = measure(case, n, args.exe, ref)
-                ref = ref or result
-                rows.append(dict(row, repeat=k))
-    # Keep the rows of the cases not run now (the seed case is run apart).
+        for mesh in args.mesh.split(","):
+            for k in range(args.repeat):
+                for n in [int(x) for x in args.ranks.split(",")]:
+                    row, result = measure(case, n, args.exe, ref, mesh)
+                    ref = ref or result
+                    rows.append(dict(row, repeat=k))
+    # Keep the rows of the cases, meshes and rank counts not run now (the
+    # seed case is run apart); rows from before the distributed mesh are
+    # shared ones.
     path = os.path.join(args.out, args.csv)
     old = [r for r in csv.DictReader(open(path))] if os.path.exists(path) else []
-    rows = [dict(r, repeat=r.get("repeat", 0)) for r in old
-            if r["case"] not in args.case.split(",")] + rows
+    now = {(r["case"], r["triangulation"], str(r["ranks"])) for r in rows}
+    old = [dict(r, repeat=r.get("repeat", 0),
+                triangulation=r.get("triangulation") or "shared") for r in old]
+    rows = [r for r in old
+            if (r["case"], r["triangulation"], r["ranks"]) not in now] + rows
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[-1]))
         w.writeheader()

@@ -159,6 +159,10 @@ namespace cycloid
            {Mode::mesh, Mode::transient, Mode::reduced},
            "it estimates no FE state's error (transient: one mesh through "
            "the run)"},
+          {"Mesh/Triangulation",
+           {Mode::mesh},
+           "it writes the mesh of the shared triangulation (every cell on "
+           "every rank)"},
           {"Mesh/Maximum sweep refinements",
            {Mode::quasi_static, Mode::mesh, Mode::transient, Mode::reduced},
            "only Run = phase-sweep repeats itself to resolve a fluctuation"},

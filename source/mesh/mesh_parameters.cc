@@ -165,8 +165,8 @@ namespace cycloid
           "(and a ghost layer), so the refined mesh and the DoF handler "
           "divide over the ranks; contact nodes, master faces and ties are "
           "gathered on every rank. Same results to round-off (the "
-          "partition differs). Quasi-static and phase-sweep runs; FE runs "
-          "only [-].");
+          "partition differs). Used by the quasi-static, phase-sweep and "
+          "transient runs; Run = mesh always writes the shared mesh [-].");
         prm.declare_entry("Write msh",
                           "false",
                           Bool(),
