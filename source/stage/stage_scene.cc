@@ -166,8 +166,17 @@ namespace cycloid
       dealii::TimerOutput::Scope t(timing, "make grid");
       mesh::create_stage_mesh(settings.mesh_settings(), request, *tria);
       pcout << "  mesh: " << dim << "D, " << settings.scene.n_discs
-            << " disc(s), " << tria->n_global_active_cells() << " cells"
-            << std::endl;
+            << " disc(s), " << tria->n_global_active_cells() << " cells";
+      if (settings.mesh.distributed)
+        {
+          // What each rank holds: its own cells, a ghost layer and the
+          // coarse grid (artificial where another rank refined it).
+          const auto held = dealii::Utilities::MPI::min_max_avg(
+            static_cast<double>(tria->n_active_cells()), comm);
+          pcout << ", distributed (p4est): " << held.min << " to " << held.max
+                << " active cells held a rank";
+        }
+      pcout << std::endl;
     }
 
 
