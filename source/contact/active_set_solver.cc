@@ -280,6 +280,13 @@ namespace cycloid
     ContactSystem<dim>::add_supports(dealii::AffineConstraints<double> &c,
                                      const double beta) const
     {
+      if (master_hanging)
+        for (const auto &line : master_hanging->get_lines())
+          if (c.can_store_line(line.index) && !c.is_constrained(line.index))
+            {
+              c.add_line(line.index);
+              c.add_entries(line.index, line.entries);
+            }
       for (const auto d : fixed)
         if (c.can_store_line(d) && !c.is_constrained(d))
           c.add_line(d);

@@ -152,6 +152,45 @@ namespace cycloid
       for (const auto &t : ties)
         for (unsigned int c = 0; c < dim; ++c)
           extra.insert(extra.end(), t.masters[c].begin(), t.masters[c].end());
+      master_hanging.clear();
+      if (search.distributed())
+        {
+          // Every rank holds the same masters; the owner of each knows
+          // whether it hangs (its cells are the owner's) and its closed
+          // line. Why: a master far from a rank's cells may hang on cells
+          // the rank does not hold, and the slave lines must condense onto
+          // its parents on every rank alike, whose rows must be there.
+          std::sort(extra.begin(), extra.end());
+          extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+          const auto         &h     = problem->hanging_node_constraints();
+          const auto         &owned = problem->locally_owned_dofs();
+          std::vector<double> packed;
+          for (const auto d : extra)
+            if (owned.is_element(d) && h.is_constrained(d))
+              {
+                const auto &entries = *h.get_constraint_entries(d);
+                packed.insert(packed.end(),
+                              {double(d), double(entries.size())});
+                for (const auto &[m, w] : entries)
+                  packed.insert(packed.end(), {double(m), w});
+              }
+          packed = gather_all(search.communicator(), packed);
+          for (const double *in = packed.data();
+               in < packed.data() + packed.size();)
+            {
+              const auto d =
+                static_cast<dealii::types::global_dof_index>(*in++);
+              const auto n = static_cast<std::size_t>(*in++);
+              master_hanging.add_line(d);
+              for (std::size_t k = 0; k < n; ++k, in += 2)
+                {
+                  const auto m =
+                    static_cast<dealii::types::global_dof_index>(in[0]);
+                  master_hanging.add_entry(d, m, in[1]);
+                  extra.push_back(m);
+                }
+            }
+        }
       problem->set_extra_relevant_dofs(extra);
     }
 
@@ -188,7 +227,8 @@ namespace cycloid
         [this](dealii::AffineConstraints<double> &c) {
           const std::vector<dealii::types::global_dof_index>      none;
           const std::map<dealii::types::global_dof_index, double> no_load;
-          const ContactSystem<dim> system{slaves, ties, none, no_load};
+          const ContactSystem<dim>                                system{
+            slaves, ties, none, no_load, nullptr, &master_hanging};
           system.add_supports(c, 0.);
           for (const auto &s : slaves)
             if (!s.hanging)
@@ -317,7 +357,8 @@ namespace cycloid
     void
     ContactProblem<dim>::assemble_without_contact()
     {
-      const ContactSystem<dim> system{slaves, ties, fixed, load};
+      const ContactSystem<dim> system{
+        slaves, ties, fixed, load, nullptr, &master_hanging};
       problem->setup_constraints(
         {[&system](dealii::AffineConstraints<double> &c) {
           system.add_supports(c, 0.);
@@ -354,7 +395,7 @@ namespace cycloid
                                      const std::string &label)
     {
       const ContactSystem<dim> system{
-        slaves, ties, fixed, load, &force_cells()};
+        slaves, ties, fixed, load, &force_cells(), &master_hanging};
       if (settings.schur_complement && !schur &&
           settings.solver == elasticity::LinearSolver::direct)
         schur = std::make_unique<ContactSchur<dim>>(

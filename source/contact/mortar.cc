@@ -42,8 +42,8 @@ namespace cycloid
           coefficients;
 
         /** On a distributed mesh each rank integrated its own slave faces:
-         * add up every rank's integrals (in rank order, so that every rank
-         * gets the same sums). */
+         * add up every rank's integrals, the same sums on every rank (the
+         * normals by one reduction, the coefficients in rank order). */
         void
         sum_over_ranks(const MPI_Comm comm)
         {

@@ -56,16 +56,6 @@ namespace cycloid
         return std::atan2(x[1] - c[1], x[0] - c[0]);
       }
 
-      /** Every rank's @p local, concatenated in rank order. */
-      std::vector<double>
-      gather_all(const MPI_Comm comm, const std::vector<double> &local)
-      {
-        std::vector<double> all;
-        for (const auto &part : dealii::Utilities::MPI::all_gather(comm, local))
-          all.insert(all.end(), part.begin(), part.end());
-        return all;
-      }
-
       /** A point's coordinates appended to @p out. */
       template <int dim>
       void
@@ -222,6 +212,17 @@ namespace cycloid
       const elasticity::LinearElasticity<dim> &problem)
       : problem(problem)
     {}
+
+
+
+    std::vector<double>
+    gather_all(const MPI_Comm comm, const std::vector<double> &local)
+    {
+      std::vector<double> all;
+      for (const auto &part : dealii::Utilities::MPI::all_gather(comm, local))
+        all.insert(all.end(), part.begin(), part.end());
+      return all;
+    }
 
 
 

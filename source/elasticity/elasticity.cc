@@ -4,7 +4,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
-#include <deal.II/distributed/tria_base.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
@@ -30,36 +29,6 @@ namespace cycloid
 {
   namespace elasticity
   {
-    namespace
-    {
-      /**
-       * On a distributed mesh, give every rank the constraint lines of all
-       * its locally relevant DoFs from the ranks that know them. Why: the
-       * contact ghosts master DoFs far from a rank's cells; a master DoF
-       * that hangs is constrained by cells this rank does not hold, and
-       * without its line here the slave's line would not be condensed
-       * onto the master's parents (on a shared mesh every rank builds
-       * every hanging line itself). Before close().
-       */
-      template <int dim>
-      void
-      share_distributed_lines(const dealii::DoFHandler<dim>     &dofs,
-                              const dealii::IndexSet            &owned,
-                              const dealii::IndexSet            &relevant,
-                              dealii::AffineConstraints<double> &c)
-      {
-        const auto &tria = dofs.get_triangulation();
-        if (dynamic_cast<
-              const dealii::parallel::DistributedTriangulationBase<dim> *>(
-              &tria) != nullptr)
-          c.make_consistent_in_parallel(owned,
-                                        relevant,
-                                        tria.get_communicator());
-      }
-    } // namespace
-
-
-
     std::pair<double, double>
     lame_parameters(const parameters::ElasticMaterial &m)
     {
@@ -173,7 +142,6 @@ namespace cycloid
       c.reinit(locally_relevant);
       dealii::DoFTools::make_hanging_node_constraints(dofs, c);
       set(c);
-      share_distributed_lines(dofs, locally_owned, locally_relevant, c);
       c.close();
       return c;
     }
@@ -261,7 +229,6 @@ namespace cycloid
       dealii::AffineConstraints<double> raw(locally_relevant);
       dealii::DoFTools::make_hanging_node_constraints(dofs, raw);
       superset(raw);
-      share_distributed_lines(dofs, locally_owned, locally_relevant, raw);
       dealii::DynamicSparsityPattern               dsp(locally_relevant);
       std::vector<dealii::types::global_dof_index> cell_dofs(
         fe.n_dofs_per_cell()),

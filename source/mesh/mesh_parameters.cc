@@ -165,8 +165,9 @@ namespace cycloid
           "(and a ghost layer), so the refined mesh and the DoF handler "
           "divide over the ranks; contact nodes, master faces and ties are "
           "gathered on every rank. Same results to round-off (the "
-          "partition differs). Used by the quasi-static, phase-sweep and "
-          "transient runs; Run = mesh always writes the shared mesh [-].");
+          "partition differs). Used by the quasi-static, phase-sweep, "
+          "transient and reduced runs; Run = mesh always writes the shared "
+          "mesh; the contact Schur complement needs shared [-].");
         prm.declare_entry("Write msh",
                           "false",
                           Bool(),

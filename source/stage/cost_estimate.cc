@@ -54,7 +54,9 @@ namespace cycloid
       /** Per-DoF memory on one rank relative to two (0.71-0.79 measured
        * in 2D, 0.73 in 3D, ladder.csv 1- and 2-rank pairs): every rank
        * holds the whole mesh (parallel::shared::Triangulation), so it
-       * grows with the ranks. */
+       * grows with the ranks. Fitted on the shared mesh: on the
+       * distributed mesh it errs high (0.92 of it on the 3D seed case on
+       * 2 ranks, doc/ranks.md). */
       constexpr double one_rank_memory = 0.74;
       /** Time on n ranks = time on 2 x (2/n)^this: the solve speed-up
        * from 1 to 2 ranks, 1.53-2.20, mean 1.78 (ladder/ranks.csv). */

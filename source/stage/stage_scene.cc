@@ -201,9 +201,22 @@ namespace cycloid
       cs.residual_tolerance   = c.residual_tolerance;
       cs.formulation          = c.formulation;
       cs.solver               = c.linear_solver;
-      cs.schur_complement     = c.use_schur_complement(settings.one_operator);
-      cs.schur_columns        = c.schur_columns;
-      contact                 = std::make_unique<contact::ContactProblem<dim>>(
+      // The Schur path takes its rows from the hanging and support lines
+      // of the cells a rank holds: on a distributed mesh they differ
+      // between the ranks, so it runs on the shared mesh only.
+      const bool schur_asked =
+        c.linear_solver == elasticity::LinearSolver::direct &&
+        c.schur_complement.value_or(false);
+      AssertThrow(!settings.mesh.distributed || !schur_asked,
+                  dealii::ExcMessage(
+                    "Solver/Contact Schur complement = true needs "
+                    "Mesh/Triangulation = shared; on a distributed mesh set "
+                    "it to auto or false (the direct solver then factorises "
+                    "each active set)."));
+      cs.schur_complement = c.use_schur_complement(settings.one_operator) &&
+                            !settings.mesh.distributed;
+      cs.schur_columns = c.schur_columns;
+      contact          = std::make_unique<contact::ContactProblem<dim>>(
         *tria, settings.mesh.degree, materials, cs);
       // Every run times the active set's stages (assembly, preconditioner,
       // solves, updates) beside the scene's own.
@@ -526,7 +539,9 @@ namespace cycloid
                 break;
               }
         }
-      if (flagged == 0)
+      // Collective: on a distributed mesh a rank may hold no cell near an
+      // active node while the others refine.
+      if (dealii::Utilities::MPI::sum(flagged, comm) == 0)
         return false;
       tria->prepare_coarsening_and_refinement();
       if (!refinement_fits())

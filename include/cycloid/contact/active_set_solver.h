@@ -43,10 +43,15 @@ namespace cycloid
        * cells). */
       const typename elasticity::LinearElasticity<dim>::CellList *force_cells =
         nullptr;
+      /** On a distributed mesh: the hanging-node lines of the ghosted
+       * master DoFs, from the ranks that own them (a rank may not hold
+       * the cells that make a master DoF hang); null: none. */
+      const dealii::AffineConstraints<double> *master_hanging = nullptr;
 
-      /** Add the supports of every state to @p c: the fixed DoFs, the load
-       * DoFs at beta * g and the ties (DoFs already constrained, e.g. by
-       * hanging nodes, keep their constraint). */
+      /** Add the supports of every state to @p c: the masters' hanging
+       * lines this rank cannot build (master_hanging), the fixed DoFs, the
+       * load DoFs at beta * g and the ties (DoFs already constrained, e.g.
+       * by hanging nodes, keep their constraint). */
       void
       add_supports(dealii::AffineConstraints<double> &c,
                    const double                       beta) const;

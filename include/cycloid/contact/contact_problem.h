@@ -102,7 +102,8 @@ namespace cycloid
       void
       setup();
 
-      /** DoFs held at zero (every rank gives the same list). */
+      /** DoFs held at zero (each rank at least those of the cells it holds;
+       * only the locally relevant ones are kept). */
       void
       set_fixed_dofs(const std::vector<dealii::types::global_dof_index> &dofs);
 
@@ -307,7 +308,9 @@ namespace cycloid
       void
       find_slave_nodes();
       /** Add the master DoFs of all slave and tied constraints to the
-       * elasticity problem's relevant (ghost) set. */
+       * elasticity problem's relevant (ghost) set. On a distributed mesh
+       * also fetch the hanging lines of those that hang (master_hanging)
+       * and ghost their parents, onto which the slave lines condense. */
       void
       ghost_master_dofs();
       /** The slave DoFs and their master DoFs, which decide the pattern. */
@@ -339,6 +342,9 @@ namespace cycloid
       std::vector<TiedNode<dim>>                        ties;
       std::vector<dealii::types::global_dof_index>      fixed;
       std::map<dealii::types::global_dof_index, double> load;
+      /** Distributed mesh: the hanging lines of the master DoFs, the same on
+       * every rank (ghost_master_dofs()). */
+      dealii::AffineConstraints<double> master_hanging;
       /** The active set and the last state's results. */
       ContactSolution<dim> solution;
       /** Timer of the solver's stages; null: none. */

@@ -21,6 +21,11 @@ namespace cycloid
 {
   namespace contact
   {
+    /** Every rank's @p local, concatenated in rank order (collective):
+     * how the contact lists of a distributed mesh are gathered. */
+    std::vector<double>
+    gather_all(const MPI_Comm comm, const std::vector<double> &local);
+
     /**
      * @brief The geometry of the contact, independent of how the constraint
      * is discretised: the slave nodes (support points of the slave faces)
@@ -91,7 +96,8 @@ namespace cycloid
 
       /** After a DoF distribution: collect the faces of the cylinders'
        * surfaces with their (angle, z) boxes. Only needed, and only done,
-       * for deformable masters or tied nodes. */
+       * for deformable masters or tied nodes. Collective on a distributed
+       * mesh, as are find_slave_nodes() and find_tied_nodes(). */
       void
       collect_master_faces();
 

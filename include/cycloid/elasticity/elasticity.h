@@ -132,7 +132,8 @@ namespace cycloid
       }
 
       /** Distribute the DoFs (once per mesh) and compute the hanging-node
-       * constraints of every DoF (see hanging_node_constraints()). */
+       * constraints of the cells this rank holds (see
+       * hanging_node_constraints()). */
       void
       distribute_dofs();
 
@@ -396,9 +397,11 @@ namespace cycloid
         return distributions;
       }
 
-      /** Hanging-node constraints of every DoF of the mesh (not only the
-       * locally relevant ones: on a shared triangulation every rank sees
-       * every cell). */
+      /** Hanging-node constraints of every DoF of the cells this rank
+       * holds: every DoF of the mesh on a shared triangulation (every rank
+       * sees every cell), the locally relevant ones on a distributed one
+       * (ContactProblem fetches those of far master DoFs from their
+       * owners). */
       const dealii::AffineConstraints<double> &
       hanging_node_constraints() const
       {
