@@ -141,6 +141,58 @@ namespace cycloid
 
 
 
+    namespace
+    {
+      /**
+       * On a distributed mesh: the hanging lines of the master DoFs @p extra
+       * (the same on every rank) into @p lines, and their parents appended
+       * to @p extra (which comes back sorted, each DoF once, then the
+       * parents). The owner of each master knows whether it hangs (its
+       * cells are the owner's) and its closed line. Why: a master far from
+       * a rank's cells may hang on cells the rank does not hold, and the
+       * slave lines must condense onto its parents on every rank alike,
+       * whose rows must be there. Collective.
+       */
+      template <int dim>
+      void
+      gather_master_hanging(const elasticity::LinearElasticity<dim> &problem,
+                            const MPI_Comm                           comm,
+                            std::vector<dealii::types::global_dof_index> &extra,
+                            dealii::AffineConstraints<double>            &lines)
+      {
+        std::sort(extra.begin(), extra.end());
+        extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+        const auto         &h     = problem.hanging_node_constraints();
+        const auto         &owned = problem.locally_owned_dofs();
+        std::vector<double> packed;
+        for (const auto d : extra)
+          if (owned.is_element(d) && h.is_constrained(d))
+            {
+              const auto &entries = *h.get_constraint_entries(d);
+              packed.insert(packed.end(), {double(d), double(entries.size())});
+              for (const auto &[m, w] : entries)
+                packed.insert(packed.end(), {double(m), w});
+            }
+        packed = gather_all(comm, packed);
+        for (const double *in = packed.data();
+             in < packed.data() + packed.size();)
+          {
+            const auto d = static_cast<dealii::types::global_dof_index>(*in++);
+            const auto n = static_cast<std::size_t>(*in++);
+            lines.add_line(d);
+            for (std::size_t k = 0; k < n; ++k, in += 2)
+              {
+                const auto m =
+                  static_cast<dealii::types::global_dof_index>(in[0]);
+                lines.add_entry(d, m, in[1]);
+                extra.push_back(m);
+              }
+          }
+      }
+    } // namespace
+
+
+
     template <int dim>
     void
     ContactProblem<dim>::ghost_master_dofs()
@@ -154,43 +206,10 @@ namespace cycloid
           extra.insert(extra.end(), t.masters[c].begin(), t.masters[c].end());
       master_hanging.clear();
       if (search.distributed())
-        {
-          // Every rank holds the same masters; the owner of each knows
-          // whether it hangs (its cells are the owner's) and its closed
-          // line. Why: a master far from a rank's cells may hang on cells
-          // the rank does not hold, and the slave lines must condense onto
-          // its parents on every rank alike, whose rows must be there.
-          std::sort(extra.begin(), extra.end());
-          extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
-          const auto         &h     = problem->hanging_node_constraints();
-          const auto         &owned = problem->locally_owned_dofs();
-          std::vector<double> packed;
-          for (const auto d : extra)
-            if (owned.is_element(d) && h.is_constrained(d))
-              {
-                const auto &entries = *h.get_constraint_entries(d);
-                packed.insert(packed.end(),
-                              {double(d), double(entries.size())});
-                for (const auto &[m, w] : entries)
-                  packed.insert(packed.end(), {double(m), w});
-              }
-          packed = gather_all(search.communicator(), packed);
-          for (const double *in = packed.data();
-               in < packed.data() + packed.size();)
-            {
-              const auto d =
-                static_cast<dealii::types::global_dof_index>(*in++);
-              const auto n = static_cast<std::size_t>(*in++);
-              master_hanging.add_line(d);
-              for (std::size_t k = 0; k < n; ++k, in += 2)
-                {
-                  const auto m =
-                    static_cast<dealii::types::global_dof_index>(in[0]);
-                  master_hanging.add_entry(d, m, in[1]);
-                  extra.push_back(m);
-                }
-            }
-        }
+        gather_master_hanging(*problem,
+                              search.communicator(),
+                              extra,
+                              master_hanging);
       problem->set_extra_relevant_dofs(extra);
     }
 
