@@ -61,12 +61,11 @@ namespace cycloid
               normals[i][c] = flat[i * dim + c];
           for (auto &c : coefficients)
             c.clear();
-          for (const auto &part :
-               dealii::Utilities::MPI::all_gather(comm, packed))
-            for (std::size_t k = 0; k < part.size(); k += 3)
-              coefficients[static_cast<unsigned int>(part[k])]
-                          [static_cast<dealii::types::global_dof_index>(
-                            part[k + 1])] += part[k + 2];
+          const std::vector<double> all = gather_all(comm, packed);
+          for (std::size_t k = 0; k < all.size(); k += 3)
+            coefficients[static_cast<unsigned int>(all[k])]
+                        [static_cast<dealii::types::global_dof_index>(
+                          all[k + 1])] += all[k + 2];
         }
       };
 
