@@ -201,7 +201,7 @@ namespace cycloid
               p.z_max         = p.z_min + dz;
               points.push_back(p);
               pin_of.push_back(k);
-              keys.push_back({c.disc, c.pin, s});
+              keys.push_back({{c.disc, c.pin, s}});
             }
         }
       AssertThrow(!points.empty(),
