@@ -565,6 +565,11 @@ TEST(Parameters, CostModelMatchesTheMeasuredRuns)
                 13461e6,
               1.,
               0.1);
+  // The plain-aggregation hierarchy (the 3D default since 2026-12-05):
+  // the seed case peaked at 4883 MB (doc/solver-reuse.md).
+  stage::CostInputs plain{3, 2, 1503003, 1, 0, 2};
+  plain.plain_amg = true;
+  EXPECT_NEAR(stage::estimate_cost(plain).memory_bytes / 4883e6, 1., 0.05);
   const auto e = stage::estimate_cost({3, 2, 2519019, 1, 0, 2});
   EXPECT_EQ(e.line().substr(0, 47),
             "DoFs 2519019; estimated peak memory 11 GB (summ");

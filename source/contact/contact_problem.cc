@@ -27,7 +27,9 @@ namespace cycloid
       , search(*problem)
       , formulation(
           create_formulation<dim>(formulation_name(settings.formulation)))
-    {}
+    {
+      problem->set_amg_hierarchy(settings.amg_hierarchy);
+    }
 
 
 

@@ -107,7 +107,8 @@ namespace cycloid
       e.family       = f.name;
       e.n_dofs       = in.n_dofs;
       e.memory_bytes = 1e6 * mb_per_rank * ranks +
-                       1e3 * f.kb_per_dof * q2 * rank_memory * finest;
+                       1e3 * f.kb_per_dof * q2 * rank_memory * finest *
+                         (in.plain_amg ? plain_amg_memory : 1.);
       e.seconds_per_state = seconds * (in.degree > 1 ? 1.5 : 1.) *
                             (in.error_estimate ? 1.5 : 1.) *
                             std::pow(2. / ranks, rank_exponent);

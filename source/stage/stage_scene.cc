@@ -201,6 +201,7 @@ namespace cycloid
       cs.residual_tolerance   = c.residual_tolerance;
       cs.formulation          = c.formulation;
       cs.solver               = c.linear_solver;
+      cs.amg_hierarchy        = c.hierarchy(dim);
       // The Schur path takes its rows from the hanging and support lines
       // of the cells a rank holds: on a distributed mesh they differ
       // between the ranks, so it runs on the shared mesh only.
@@ -329,6 +330,17 @@ namespace cycloid
 
 
     template <int dim>
+    bool
+    StageScene<dim>::plain_amg() const
+    {
+      const auto &c = settings.contact;
+      return c.linear_solver == elasticity::LinearSolver::cg_amg &&
+             c.hierarchy(dim) == elasticity::AMGHierarchy::plain_w;
+    }
+
+
+
+    template <int dim>
     void
     StageScene<dim>::announce_cost() const
     {
@@ -342,7 +354,8 @@ namespace cycloid
                     m.adaptive_cycles,
                     dealii::Utilities::MPI::n_mpi_processes(comm),
                     m.error.estimates(dim)};
-      const auto  estimate = estimate_cost(in);
+      in.plain_amg        = plain_amg();
+      const auto estimate = estimate_cost(in);
       pcout << "  " << estimate.line();
       if (m.error.target_accuracy > 0)
         {
@@ -574,15 +587,16 @@ namespace cycloid
       const auto  &m     = settings.mesh;
       const auto   dofs  = static_cast<dealii::types::global_dof_index>(
         grown * contact->elasticity().n_dofs());
-      const CostInputs in{dim,
-                          settings.scene.n_discs,
-                          dofs,
-                          m.degree,
-                          0,
-                          dealii::Utilities::MPI::n_mpi_processes(comm),
-                          false};
-      const double     needed    = estimate_cost(in).memory_bytes;
-      const double     available = available_memory_bytes(comm);
+      CostInputs in{dim,
+                    settings.scene.n_discs,
+                    dofs,
+                    m.degree,
+                    0,
+                    dealii::Utilities::MPI::n_mpi_processes(comm),
+                    false};
+      in.plain_amg           = plain_amg();
+      const double needed    = estimate_cost(in).memory_bytes;
+      const double available = available_memory_bytes(comm);
       if (needed <= available)
         return true;
       std::ostringstream why;

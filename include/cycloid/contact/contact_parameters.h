@@ -36,6 +36,8 @@ namespace cycloid
       /** Linear solver (`Linear solver`: cg-amg, cg-amg-translations or
        * direct). */
       elasticity::LinearSolver linear_solver = elasticity::LinearSolver::cg_amg;
+      /** `AMG hierarchy`: as set, or absent for auto (see hierarchy()). */
+      std::optional<elasticity::AMGHierarchy> amg_hierarchy;
       /** Relative tolerance of the iterative solver [-]. */
       double solver_tolerance = 1e-10;
       /** Marks `Inner tolerance = auto`. */
@@ -77,6 +79,18 @@ namespace cycloid
         return std::max(inner_tolerance == automatic ? (dim == 3 ? 1e-6 : 0.) :
                                                        inner_tolerance,
                         solver_tolerance);
+      }
+
+      /** The AMG hierarchy of a scene of dimension @p dim: auto is plain
+       * aggregation with a W-cycle in 3D, where the smoothed hierarchy's
+       * set-up and size dominate a state's memory, and smoothed with a
+       * V-cycle in 2D (doc/solver-reuse.md). */
+      elasticity::AMGHierarchy
+      hierarchy(const unsigned int dim) const
+      {
+        return amg_hierarchy.value_or(dim == 3 ?
+                                        elasticity::AMGHierarchy::plain_w :
+                                        elasticity::AMGHierarchy::smoothed_v);
       }
 
       /** Declare subsections `Contact` and `Solver`. */

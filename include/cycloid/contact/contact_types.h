@@ -149,6 +149,9 @@ namespace cycloid
       double search_distance = 0.1;
       /** Linear solver. */
       elasticity::LinearSolver solver = elasticity::LinearSolver::cg_amg;
+      /** How ML builds the hierarchy of the CG solver. */
+      elasticity::AMGHierarchy amg_hierarchy =
+        elasticity::AMGHierarchy::smoothed_v;
       /** Relative tolerance of CG. */
       double solver_tolerance = 1e-10;
       /** Relative tolerance of CG while the active set still changes (the

@@ -53,6 +53,22 @@ namespace cycloid
       direct_mumps
     };
 
+    /**
+     * @brief How ML builds the AMG hierarchy of LinearSolver::cg_amg
+     * (`Solver/AMG hierarchy`).
+     */
+    enum class AMGHierarchy
+    {
+      /** Smoothed aggregation and a V-cycle (ML's elasticity default). */
+      smoothed_v,
+      /** Plain (unsmoothed) aggregation and a W-cycle: the prolongator
+       * keeps the tentative one's few entries a row, so the set-up skips
+       * the matrix products that smoothing needs and the hierarchy is a
+       * fraction of the size; the W-cycle wins back what plain
+       * aggregation loses in convergence (doc/solver-reuse.md). */
+      plain_w
+    };
+
     /** Whether @p solver is a direct (factorising) solver. */
     inline bool
     is_direct(const LinearSolver solver)
@@ -149,6 +165,14 @@ namespace cycloid
       setup_constraints(
         const std::vector<
           std::function<void(dealii::AffineConstraints<double> &)>> &sets);
+
+      /** How the next AMG set-ups build their hierarchy (default
+       * AMGHierarchy::smoothed_v). */
+      void
+      set_amg_hierarchy(const AMGHierarchy hierarchy)
+      {
+        amg_hierarchy = hierarchy;
+      }
 
       /**
        * Build, now, one sparsity pattern for every constraint set given to
@@ -573,6 +597,8 @@ namespace cycloid
       bool pattern_fixed = false;
       /** A solve asked for a new hierarchy (the iterations rose). */
       bool rebuild_amg = false;
+      /** Aggregation and cycle of the AMG hierarchy. */
+      AMGHierarchy amg_hierarchy = AMGHierarchy::smoothed_v;
       /** CG iterations of the first solve after the last AMG build (0:
        * none yet). */
       unsigned int reference_iterations = 0;

@@ -24,7 +24,17 @@ namespace cycloid
       unsigned int n_ranks         = 1; ///< MPI ranks.
       /** Mesh/Error estimate: a coarser level is solved too. */
       bool error_estimate = false;
+      /** CG with the plain-aggregation W-cycle (Solver/AMG hierarchy,
+       * the 3D default): the fits' smoothed hierarchy's memory per DoF
+       * times plain_amg_memory. */
+      bool plain_amg = false;
     };
+
+    /** Memory per DoF (above the ranks' 150 MB) with the plain-aggregation
+     * hierarchy relative to the smoothed one the fits were made with:
+     * 0.68 on the 3D seed case (1.50 M DoFs) and 0.73 on a 3D two-disc
+     * scene of 290 k DoFs, side by side (doc/solver-reuse.md). */
+    constexpr double plain_amg_memory = 0.70;
 
     /**
      * @brief Estimated peak memory and time of one state of an FE scene,

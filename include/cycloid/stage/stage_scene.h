@@ -263,6 +263,10 @@ namespace cycloid
       setup_contact();
       void
       setup_system();
+      /** Whether the states solve with CG and the plain-aggregation
+       * hierarchy (the cost model's memory factor). */
+      bool
+      plain_amg() const;
       /** Print the cost estimate of the scene (stage/cost_estimate.h) and
        * stop if it does not fit into the available memory. */
       void
