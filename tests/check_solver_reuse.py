@@ -65,21 +65,23 @@ def close(a, b, scale):
 
 
 def compare(name, kept, rebuilt, hierarchy=False):
+    # How the two runs are named in the messages.
+    one, two = ("with auto", "with smoothed-V") if hierarchy else ("with reuse", "without")
     s1, s0 = rows(os.path.join(kept, "stiffness.csv")), rows(os.path.join(rebuilt, "stiffness.csv"))
-    check(len(s1) == len(s0) > 0, "%s: %d states with reuse, %d without" % (name, len(s1), len(s0)))
+    check(len(s1) == len(s0) > 0, "%s: %d states %s, %d %s" % (name, len(s1), one, len(s0), two))
     for a, b in zip(s1, s0):
         for col in ("K_secant_Nm_per_rad", "K_tangent_Nm_per_rad", "reaction_torque_Nm", "max_pin_force_N"):
             scale = max(abs(float(b[col])), 1e-30) if not math.isnan(float(b[col])) else 1
             if col == "reaction_torque_Nm":
                 scale = max(abs(float(x[col])) for x in s0)
             check(close(a[col], b[col], scale),
-                  "%s step %s: %s %s with reuse, %s without" % (name, a["step"], col, a[col], b[col]))
+                  "%s step %s: %s %s %s, %s %s" % (name, a["step"], col, a[col], one, b[col], two))
         check(a["pins_in_contact"] == b["pins_in_contact"],
-              "%s step %s: %s pins in contact with reuse, %s without"
-              % (name, a["step"], a["pins_in_contact"], b["pins_in_contact"]))
+              "%s step %s: %s pins in contact %s, %s %s"
+              % (name, a["step"], a["pins_in_contact"], one, b["pins_in_contact"], two))
     p1, p0 = rows(os.path.join(kept, "pin_forces.csv")), rows(os.path.join(rebuilt, "pin_forces.csv"))
     fmax = max(float(p["Fn_N"]) for p in p0)
-    check(len(p1) == len(p0), "%s: %d pin rows with reuse, %d without" % (name, len(p1), len(p0)))
+    check(len(p1) == len(p0), "%s: %d pin rows %s, %d %s" % (name, len(p1), one, len(p0), two))
     worst = max(abs(float(a["Fn_N"]) - float(b["Fn_N"])) for a, b in zip(p1, p0)) / fmax
     check(worst <= TOLERANCE, "%s: pin forces differ by %.2e of the largest" % (name, worst))
     energy = os.path.join(rebuilt, "energy.csv")
@@ -89,7 +91,7 @@ def compare(name, kept, rebuilt, hierarchy=False):
         for a, b in zip(e1, e0):
             for col in ("kinetic_J", "elastic_J", "external_work_J"):
                 check(close(a[col], b[col], top),
-                      "%s step %s: %s %s with reuse, %s without" % (name, a["step"], col, a[col], b[col]))
+                      "%s step %s: %s %s %s, %s %s" % (name, a["step"], col, a[col], one, b[col], two))
     if hierarchy:
         for a, b in zip(s1, s0):
             check(a["linear_iterations"] != b["linear_iterations"],
