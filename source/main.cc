@@ -7,6 +7,7 @@
 
 #include <cycloid/app/all_parameters.h>
 #include <cycloid/app/error_report.h>
+#include <cycloid/app/heap.h>
 #include <cycloid/app/run.h>
 
 #include <iostream>
@@ -128,6 +129,9 @@ namespace
 int
 main(int argc, char *argv[])
 {
+  // Before MPI: a restart after MPI_Init would leave the launcher waiting.
+  cycloid::app::restart_with_huge_pages(argv);
+  cycloid::app::release_freed_memory();
   // MPI lives outside the try block: the error report talks over MPI.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   try

@@ -3,7 +3,9 @@
 // §2.3) under internal pressure in plane strain, on a quarter with symmetry
 // conditions. Checks the displacement error and its convergence rate for Q1
 // and Q2, the CG+AMG solution against the direct solver, and (run on 2 MPI
-// ranks too) that the answer does not depend on the partition.
+// ranks too) that the answer does not depend on the partition. Also: a
+// matrix-sized block goes back to the system when it is freed, although a
+// library linked in switches that off (app/heap.h).
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -13,6 +15,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <cycloid/app/heap.h>
 #include <cycloid/elasticity/elasticity.h>
 #include <cycloid/elasticity/sparse_cholesky.h>
 
@@ -21,6 +24,9 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <vector>
+
+#include <malloc.h>
 
 using namespace cycloid;
 
@@ -546,4 +552,22 @@ TEST(Elasticity, HistoryLoadAloneIsTheFullAssemblysRightHandSide)
       problem.setup_constraints({fixed(0.), fixed(1.)});
       EXPECT_FALSE(problem.assemble_history_load());
     }
+}
+
+
+
+TEST(Heap, MatrixSizedBlocksGoBackToTheSystemWhenFreed)
+{
+  // This executable links deal.II, and with it the library whose static
+  // initialiser turns mapped blocks off: without release_freed_memory() a
+  // 64 MB block would stay in the heap after it is freed.
+  app::release_freed_memory(32u << 20);
+  ASSERT_EQ(app::mmap_threshold(), 32u << 20)
+    << "CYCLOID_MMAP_THRESHOLD is set in the environment";
+  const std::size_t mapped_before = mallinfo2().hblkhd;
+  {
+    std::vector<double> block((64u << 20) / sizeof(double), 1.);
+    EXPECT_GE(mallinfo2().hblkhd, mapped_before + (64u << 20));
+  }
+  EXPECT_EQ(mallinfo2().hblkhd, mapped_before);
 }

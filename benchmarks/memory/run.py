@@ -4,7 +4,7 @@ after each stage of every active-set iteration, side by side for one or two
 builds.
 
 Usage: benchmarks/memory/run.py [--prm PRM] [--exe EXE] [--before EXE]
-           [--ranks N] [--repeat K] [--out CSV]
+           [--before-env NAME=VALUE] [--ranks N] [--repeat K] [--out CSV]
 
 Runs PRM (default benchmarks/ml_aggregation/two-discs-3d.prm: 3D, two
 discs, 290 k DoFs, one state) with CYCLOID_DEBUG=1 on N ranks (default 2)
@@ -12,7 +12,10 @@ and reads the debug lines of the contact solver: per iteration rank 0's
 resident memory after the assembly, the AMG set-up and the solves, the heap
 in use (glibc's mallinfo2) and the peak so far. With --before, a second
 build runs interleaved with --exe, K times each (its debug lines may lack
-the memory figures; then only the whole-run figures are compared). Per run
+the memory figures; then only the whole-run figures are compared).
+--before-env runs the "before" side with NAME=VALUE in its environment
+(with --exe unless --before is given), e.g. CYCLOID_MMAP_THRESHOLD=0 for
+the heap as the libraries leave it (doc/solver-reuse.md). Per run
 it prints `peak_memory_MB` of stiffness.csv (VmHWM summed over the ranks),
 the largest rank's peak (GNU time), kB per DoF with and without 150 MB per
 rank for the program and its libraries, the state's wall_s, CG iterations
@@ -37,7 +40,7 @@ ITERATION = re.compile(
     r"([\d.]+) MB, peak ([\d.]+) MB")
 
 
-def run(name, exe, prm, ranks, k):
+def run(name, exe, prm, ranks, k, extra_env=None):
     out = os.path.join(WORK, "%s-%d" % (name, k))
     os.makedirs(WORK, exist_ok=True)
     with open(out + ".prm", "w") as f:
@@ -45,9 +48,10 @@ def run(name, exe, prm, ranks, k):
         f.write("\nset Output directory = %s\n" % out)
     flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
     load = os.getloadavg()[0]
-    env = dict(os.environ, CYCLOID_DEBUG="1")
+    env = dict(os.environ, CYCLOID_DEBUG="1", **(extra_env or {}))
+    exports = sum((["-x", key] for key in env if key.startswith("CYCLOID_")), [])
     p = subprocess.run(["/usr/bin/time", "-f", "TIME %e %M", "mpirun"] + flags +
-                       ["-np", str(ranks), exe, out + ".prm"],
+                       exports + ["-np", str(ranks), exe, out + ".prm"],
                        capture_output=True, text=True, env=env)
     if p.returncode != 0:
         sys.exit("%s failed:\n%s" % (out, p.stdout[-2000:] + p.stderr[-2000:]))
@@ -71,15 +75,19 @@ def main():
     ap.add_argument("--prm", default=PRM)
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "cycloid-contact"))
     ap.add_argument("--before")
+    ap.add_argument("--before-env", metavar="NAME=VALUE")
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--out", default=os.path.join(WORK, "memory.csv"))
     a = ap.parse_args()
-    builds = [("now", a.exe)] + ([("before", a.before)] if a.before else [])
+    before_env = dict([a.before_env.split("=", 1)]) if a.before_env else None
+    before_exe = a.before or (a.exe if before_env else None)
+    builds = [("now", a.exe, None)] + (
+        [("before", before_exe, before_env)] if before_exe else [])
     rows = []
     for k in range(a.repeat):
-        for name, exe in builds:
-            r = run(name, exe, a.prm, a.ranks, k)
+        for name, exe, extra_env in builds:
+            r = run(name, exe, a.prm, a.ranks, k, extra_env)
             rows.append(r)
             print("%s #%d (load %.2f): %d DoFs, peak %.0f MB summed (%.2f kB/DoF, "
                   "%.2f without libraries), largest rank %.0f MB, state %.1f s, "
@@ -91,7 +99,7 @@ def main():
             for it in r["iterations"]:
                 print("  iteration %d: rank 0 resident %.0f after assembly, %.0f after "
                       "AMG, %.0f after solves; heap in use %.0f; peak %.0f MB" % it)
-    if a.before:
+    if before_exe:
         for key in ("peak_memory_MB", "state_wall_s"):
             now = statistics.median(r[key] for r in rows if r["build"] == "now")
             old = statistics.median(r[key] for r in rows if r["build"] == "before")

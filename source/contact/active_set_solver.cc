@@ -58,6 +58,19 @@ namespace cycloid
 
 
 
+      /** Where the heap is (debug output): the main arena's size and the
+       * part of it that is free, and the blocks mapped on their own. */
+      std::string
+      heap_layout()
+      {
+        const auto m = mallinfo2();
+        return "arena " + std::to_string(m.arena / 1048576) + " MB (free " +
+               std::to_string(m.fordblks / 1048576) + "), mapped " +
+               std::to_string(m.hblkhd / 1048576) + " MB";
+      }
+
+
+
       /** This process's peak resident memory [MB] (debug output). */
       double
       peak_MB()
@@ -129,10 +142,12 @@ namespace cycloid
             ++state.iterations;
           const double t_assemble = clock.wall_time();
           const double m_assemble = resident_MB();
+          const double p_assemble = peak_MB();
           if (!use_schur)
             setup_preconditioner();
           const double t_preconditioner = clock.wall_time();
           const double m_preconditioner = resident_MB();
+          const double p_preconditioner = peak_MB();
           if (use_schur)
             {
               // Exact solves: a set solved once needs no second look.
@@ -173,8 +188,10 @@ namespace cycloid
                       << "; rank 0 resident after assembly " << m_assemble
                       << " MB, preconditioner " << m_preconditioner
                       << " MB, solves " << resident_MB() << " MB, heap in use "
-                      << in_use_MB() << " MB, peak " << peak_MB() << " MB"
-                      << std::endl;
+                      << in_use_MB() << " MB, peak " << peak_MB() << " MB; "
+                      << heap_layout() << "; peak after assembly " << p_assemble
+                      << " MB, after preconditioner " << p_preconditioner
+                      << " MB" << std::endl;
 
           std::set<unsigned int> next;
           SetChange              change;

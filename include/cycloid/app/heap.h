@@ -1,0 +1,66 @@
+#ifndef cycloid_app_heap_h
+#define cycloid_app_heap_h
+
+#include <cstddef>
+
+namespace cycloid
+{
+  namespace app
+  {
+    /**
+     * Let freed matrix-sized blocks go back to the system.
+     *
+     * Debian's SuperLU_DIST, which deal.II links through PETSc, carries
+     * CombBLAS, whose static initialiser calls `mallopt(M_MMAP_MAX, 0)` and
+     * `mallopt(M_TRIM_THRESHOLD, -1)` when the library is loaded, before
+     * main(). From then on glibc never maps a large block on its own and
+     * never shrinks the heap: the matrix, its pattern and the AMG set-up's
+     * products of an active-set iteration stay resident after they are
+     * freed, and the next iteration's blocks fit only in part into the
+     * holes. On the 3D seed case that was about a tenth of the peak
+     * (doc/solver-reuse.md, "Memory: a library that kept every freed
+     * block").
+     *
+     * This call maps blocks of at least @p mmap_threshold bytes (at most
+     * 32 MB, glibc's limit) on their own again, so that they are unmapped
+     * when freed. Those are the matrix, its pattern and the AMG set-up's
+     * products. Vectors, which an AMG cycle allocates and frees at every
+     * application, stay in the heap up to 4 M DoFs per rank and are not
+     * faulted in anew each time. The top of the heap stays untrimmed, as
+     * the libraries left it.
+     *
+     * The environment variable `CYCLOID_MMAP_THRESHOLD` (bytes; 0 keeps the
+     * libraries' setting) overrides @p mmap_threshold, for measurements.
+     * Call it once, first thing in main(), after restart_with_huge_pages().
+     * Without glibc it does nothing.
+     */
+    void
+    release_freed_memory(std::size_t mmap_threshold = 32u << 20);
+
+    /** The threshold release_freed_memory() set [bytes]; 0 if it kept the
+     * libraries' setting or was not called. */
+    std::size_t
+    mmap_threshold();
+
+    /**
+     * Start this program again, once, with glibc's tunable
+     * `glibc.malloc.hugetlb=1` (transparent huge pages for the blocks
+     * glibc maps), unless `GLIBC_TUNABLES` already names it,
+     * `CYCLOID_MMAP_THRESHOLD` is 0 or the program runs under valgrind
+     * (which a restart would leave behind).
+     *
+     * A mapped block is new memory each time: every active-set iteration
+     * faults its matrix and AMG products in afresh. In 4 kB pages that made
+     * the 3D seed case 14 % slower; in 2 MB pages it costs nothing
+     * measurable. glibc reads its tunables only when a process starts, and
+     * the kernel here gives huge pages only where a program asks for them
+     * (`madvise`), hence the restart. Call it first thing in main(), before
+     * MPI is initialised; @p argv is main()'s. If the restart fails, the
+     * program goes on with small pages.
+     */
+    void
+    restart_with_huge_pages(char **argv);
+  } // namespace app
+} // namespace cycloid
+
+#endif

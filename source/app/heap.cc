@@ -1,0 +1,85 @@
+#include <cycloid/app/heap.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#if defined(__GLIBC__)
+#  include <malloc.h>
+#  include <unistd.h>
+#endif
+
+namespace cycloid
+{
+  namespace app
+  {
+    namespace
+    {
+      std::size_t threshold_set = 0;
+
+      /** The threshold to use [bytes]: @p requested unless the environment
+       * says otherwise. */
+      std::size_t
+      threshold(const std::size_t requested)
+      {
+        const char *value = std::getenv("CYCLOID_MMAP_THRESHOLD");
+        return value ? std::stoul(value) : requested;
+      }
+    } // namespace
+
+
+
+    void
+    restart_with_huge_pages(char **argv)
+    {
+#if defined(__GLIBC__)
+      if (threshold(1) == 0)
+        return;
+      const char       *tunables = std::getenv("GLIBC_TUNABLES");
+      const std::string current  = tunables ? tunables : "";
+      if (current.find("glibc.malloc.hugetlb") != std::string::npos)
+        return;
+      // Under valgrind the restarted program would run without it.
+      const char *preload = std::getenv("LD_PRELOAD");
+      if (preload && std::strstr(preload, "vgpreload"))
+        return;
+      const std::string wanted =
+        (current.empty() ? "" : current + ":") + "glibc.malloc.hugetlb=1";
+      if (setenv("GLIBC_TUNABLES", wanted.c_str(), 1) != 0)
+        return;
+      execv("/proc/self/exe", argv);
+      // Only reached if the program could not be started again: it runs on
+      // with small pages, which costs time, not results.
+#else
+      (void)argv;
+#endif
+    }
+
+
+
+    void
+    release_freed_memory(const std::size_t mmap_threshold)
+    {
+      const std::size_t bytes = threshold(mmap_threshold);
+      if (bytes == 0)
+        return;
+#if defined(__GLIBC__)
+      // glibc's own default for the number of mapped blocks. The heap's top
+      // stays untrimmed, as the libraries left it: trimming gave back the
+      // vectors that every AMG cycle allocates anew, and faulting them in
+      // again cost time.
+      if (mallopt(M_MMAP_MAX, 65536) == 1 &&
+          mallopt(M_MMAP_THRESHOLD, static_cast<int>(bytes)) == 1)
+        threshold_set = bytes;
+#endif
+    }
+
+
+
+    std::size_t
+    mmap_threshold()
+    {
+      return threshold_set;
+    }
+  } // namespace app
+} // namespace cycloid
