@@ -15,6 +15,7 @@
 
 #include <cycloid/elasticity/digest.h>
 #include <cycloid/elasticity/elasticity.h>
+#include <cycloid/elasticity/heap.h>
 #include <cycloid/elasticity/support_points.h>
 
 #include <algorithm>
@@ -110,6 +111,10 @@ namespace cycloid
       locally_relevant_solution.reinit(locally_owned, locally_relevant, comm);
       many_solver.reset();
       many_problem.reset();
+      // The old constraints' lines (and the dynamic pattern's rows, if the
+      // pattern was rebuilt) are freed: their pages go back before the
+      // assembly and the AMG set-up peak on top of them.
+      give_back_freed_pages();
     }
 
 

@@ -1,11 +1,11 @@
-#ifndef cycloid_app_heap_h
-#define cycloid_app_heap_h
+#ifndef cycloid_elasticity_heap_h
+#define cycloid_elasticity_heap_h
 
 #include <cstddef>
 
 namespace cycloid
 {
-  namespace app
+  namespace elasticity
   {
     /**
      * Let freed matrix-sized blocks go back to the system.
@@ -43,6 +43,25 @@ namespace cycloid
     mmap_threshold();
 
     /**
+     * Give the whole free pages inside the heap back to the system
+     * (`malloc_trim(0)`), if release_freed_memory() set a threshold.
+     *
+     * The blocks below the threshold stay in the heap: a dynamic sparsity
+     * pattern's rows, the constraints' lines, the index sets. When a new
+     * pattern or a new set of constraints replaces the old, their freed
+     * blocks leave holes of hundreds of MB that the libraries' setting never
+     * returns, and the AMG set-up that follows peaks on top of them. On the
+     * 3D seed case, calling this once the constraints are rebuilt took a
+     * tenth off the peak (doc/solver-reuse.md, "The holes of small
+     * blocks"). Pages used again are faulted in anew, and each page given
+     * back inside one of the heap's 2 MB huge pages splits it into 4 kB
+     * pages, so call it where a large structure has just been freed, not in
+     * a loop. Without glibc it does nothing.
+     */
+    void
+    give_back_freed_pages();
+
+    /**
      * Start this program again, once, with glibc's tunable
      * `glibc.malloc.hugetlb=1` (transparent huge pages for the blocks
      * glibc maps), unless `GLIBC_TUNABLES` already names it,
@@ -60,7 +79,7 @@ namespace cycloid
      */
     void
     restart_with_huge_pages(char **argv);
-  } // namespace app
+  } // namespace elasticity
 } // namespace cycloid
 
 #endif

@@ -1,5 +1,6 @@
-#include <cycloid/app/heap.h>
+#include <cycloid/elasticity/heap.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -11,20 +12,50 @@
 
 namespace cycloid
 {
-  namespace app
+  namespace elasticity
   {
     namespace
     {
       std::size_t threshold_set = 0;
 
       /** The threshold to use [bytes]: @p requested unless the environment
-       * says otherwise. */
+       * says otherwise. A value that is not a number of bytes is ignored,
+       * with a warning if @p warn: this runs before main() can report
+       * errors, and once per process is enough. */
       std::size_t
-      threshold(const std::size_t requested)
+      threshold(const std::size_t requested, const bool warn = false)
       {
         const char *value = std::getenv("CYCLOID_MMAP_THRESHOLD");
-        return value ? std::stoul(value) : requested;
+        if (value == nullptr)
+          return requested;
+        char                    *end   = nullptr;
+        const unsigned long long bytes = std::strtoull(value, &end, 10);
+        if (end == value || *end != '\0')
+          {
+            if (warn)
+              std::fprintf(
+                stderr,
+                "cycloid-contact: CYCLOID_MMAP_THRESHOLD=%s is not a "
+                "number of bytes; it is ignored.\n",
+                value);
+            return requested;
+          }
+        return bytes;
       }
+
+
+
+      /** Whether the environment keeps the libraries' heap setting
+       * (`CYCLOID_MMAP_THRESHOLD=0`, for measurements of the old
+       * behaviour). */
+      bool
+      libraries_setting_kept()
+      {
+        return threshold(1) == 0;
+      }
+
+
+
     } // namespace
 
 
@@ -33,7 +64,7 @@ namespace cycloid
     restart_with_huge_pages(char **argv)
     {
 #if defined(__GLIBC__)
-      if (threshold(1) == 0)
+      if (libraries_setting_kept())
         return;
       const char       *tunables = std::getenv("GLIBC_TUNABLES");
       const std::string current  = tunables ? tunables : "";
@@ -60,7 +91,7 @@ namespace cycloid
     void
     release_freed_memory(const std::size_t mmap_threshold)
     {
-      const std::size_t bytes = threshold(mmap_threshold);
+      const std::size_t bytes = threshold(mmap_threshold, true);
       if (bytes == 0)
         return;
 #if defined(__GLIBC__)
@@ -81,5 +112,16 @@ namespace cycloid
     {
       return threshold_set;
     }
-  } // namespace app
+
+
+
+    void
+    give_back_freed_pages()
+    {
+#if defined(__GLIBC__)
+      if (threshold_set != 0)
+        malloc_trim(0);
+#endif
+    }
+  } // namespace elasticity
 } // namespace cycloid
