@@ -73,8 +73,9 @@ def prm_into(prm, work, distributed=False):
     with open(path, "w") as f:
         f.write(open(prm).read())
         f.write("\nset Output directory = %s\nset Write solution = false\n" % work)
-        if distributed:
-            f.write("subsection Mesh\n  set Triangulation = distributed\nend\n")
+        # Always written: the prm may name a triangulation of its own.
+        f.write("subsection Mesh\n  set Triangulation = %s\nend\n"
+                % ("distributed" if distributed else "shared"))
     return path
 
 
