@@ -53,9 +53,6 @@ namespace cycloid
       {
         return threshold(1) == 0;
       }
-
-
-
     } // namespace
 
 
@@ -95,10 +92,11 @@ namespace cycloid
       if (bytes == 0)
         return;
 #if defined(__GLIBC__)
-      // glibc's own default for the number of mapped blocks. The heap's top
-      // stays untrimmed, as the libraries left it: trimming gave back the
-      // vectors that every AMG cycle allocates anew, and faulting them in
-      // again cost time.
+      // glibc's own default for the number of mapped blocks. The heap is
+      // not trimmed at every free, as the libraries left it: trimming each
+      // time gave back the vectors that every AMG cycle allocates anew, and
+      // faulting them in again cost time (give_back_freed_pages() trims at
+      // chosen moments instead).
       if (mallopt(M_MMAP_MAX, 65536) == 1 &&
           mallopt(M_MMAP_THRESHOLD, static_cast<int>(bytes)) == 1)
         threshold_set = bytes;

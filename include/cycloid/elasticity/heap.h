@@ -26,8 +26,9 @@ namespace cycloid
      * when freed. Those are the matrix, its pattern and the AMG set-up's
      * products. Vectors, which an AMG cycle allocates and frees at every
      * application, stay in the heap up to 4 M DoFs per rank and are not
-     * faulted in anew each time. The top of the heap stays untrimmed, as
-     * the libraries left it.
+     * faulted in anew each time. The heap is not trimmed at every free, as
+     * the libraries left it; give_back_freed_pages() gives its free pages
+     * back where a large structure has just been replaced.
      *
      * The environment variable `CYCLOID_MMAP_THRESHOLD` (bytes; 0 keeps the
      * libraries' setting) overrides @p mmap_threshold, for measurements.
