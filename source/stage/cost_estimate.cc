@@ -104,11 +104,14 @@ namespace cycloid
       const double rank_memory =
         one_rank_memory + (1. - one_rank_memory) * (ranks - 1.);
       CostEstimate e;
-      e.family       = f.name;
-      e.n_dofs       = in.n_dofs;
+      e.family = f.name;
+      e.n_dofs = in.n_dofs;
+      // The heap's factor is measured in 3D only.
+      const double heap =
+        in.dimension == 3 && in.heap_released ? heap_memory : 1.;
       e.memory_bytes = 1e6 * mb_per_rank * ranks +
                        1e3 * f.kb_per_dof * q2 * rank_memory * finest *
-                         (in.plain_amg ? plain_amg_memory : 1.);
+                         (in.plain_amg ? plain_amg_memory : 1.) * heap;
       e.seconds_per_state = seconds * (in.degree > 1 ? 1.5 : 1.) *
                             (in.error_estimate ? 1.5 : 1.) *
                             std::pow(2. / ranks, rank_exponent);

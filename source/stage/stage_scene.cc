@@ -9,6 +9,7 @@
 #include <deal.II/grid/tria_iterator.h>
 
 #include <cycloid/analytic/pair_stiffness.h>
+#include <cycloid/elasticity/heap.h>
 #include <cycloid/elasticity/support_points.h>
 #include <cycloid/mesh/contact_refinement.h>
 #include <cycloid/postprocess/report.h>
@@ -341,20 +342,34 @@ namespace cycloid
 
 
     template <int dim>
+    CostInputs
+    StageScene<dim>::cost_inputs(
+      const dealii::types::global_dof_index n_dofs) const
+    {
+      CostInputs in{dim,
+                    settings.scene.n_discs,
+                    n_dofs,
+                    settings.mesh.degree,
+                    0,
+                    dealii::Utilities::MPI::n_mpi_processes(comm),
+                    false};
+      in.plain_amg     = plain_amg();
+      in.heap_released = elasticity::mmap_threshold() != 0;
+      return in;
+    }
+
+
+
+    template <int dim>
     void
     StageScene<dim>::announce_cost() const
     {
       // The DoFs exist, the matrices not yet (they are allocated at the
       // first solve): the last moment to stop a run that cannot fit.
-      const auto &m = settings.mesh;
-      CostInputs  in{dim,
-                    settings.scene.n_discs,
-                    contact->elasticity().n_dofs(),
-                    m.degree,
-                    m.adaptive_cycles,
-                    dealii::Utilities::MPI::n_mpi_processes(comm),
-                    m.error.estimates(dim)};
-      in.plain_amg        = plain_amg();
+      const auto &m       = settings.mesh;
+      CostInputs  in      = cost_inputs(contact->elasticity().n_dofs());
+      in.adaptive_cycles  = m.adaptive_cycles;
+      in.error_estimate   = m.error.estimates(dim);
       const auto estimate = estimate_cost(in);
       pcout << "  " << estimate.line();
       if (m.error.target_accuracy > 0)
@@ -584,18 +599,9 @@ namespace cycloid
       flagged            = dealii::Utilities::MPI::sum(flagged, comm);
       const double cells = tria->n_global_active_cells();
       const double grown = (cells + ((1u << dim) - 1) * flagged) / cells;
-      const auto  &m     = settings.mesh;
       const auto   dofs  = static_cast<dealii::types::global_dof_index>(
         grown * contact->elasticity().n_dofs());
-      CostInputs in{dim,
-                    settings.scene.n_discs,
-                    dofs,
-                    m.degree,
-                    0,
-                    dealii::Utilities::MPI::n_mpi_processes(comm),
-                    false};
-      in.plain_amg           = plain_amg();
-      const double needed    = estimate_cost(in).memory_bytes;
+      const double needed    = estimate_cost(cost_inputs(dofs)).memory_bytes;
       const double available = available_memory_bytes(comm);
       if (needed <= available)
         return true;

@@ -28,6 +28,10 @@ namespace cycloid
        * the 3D default): the fits' smoothed hierarchy's memory per DoF
        * times plain_amg_memory. */
       bool plain_amg = false;
+      /** The heap gives freed blocks back (elasticity/heap.h; false with
+       * CYCLOID_MMAP_THRESHOLD=0, and for the fits' runs): in 3D the
+       * memory per DoF times heap_memory. */
+      bool heap_released = false;
     };
 
     /** Memory per DoF (above the ranks' 150 MB) with the plain-aggregation
@@ -35,6 +39,16 @@ namespace cycloid
      * 0.68 on the 3D seed case (1.50 M DoFs) and 0.73 on a 3D two-disc
      * scene of 290 k DoFs, side by side (doc/solver-reuse.md). */
     constexpr double plain_amg_memory = 0.70;
+
+    /** Memory per DoF (above the ranks' 150 MB) in 3D when the heap gives
+     * freed matrix-sized blocks and the freed small blocks' pages back,
+     * relative to the fits' runs, whose heap kept them: 0.80 on the 3D
+     * seed case (1.50 M DoFs) and 0.84 on a 3D two-disc scene of 290 k
+     * DoFs, plain-aggregation hierarchy, shared mesh, 2 ranks
+     * (doc/solver-reuse.md, "The holes of small blocks"). On the
+     * distributed mesh the estimate errs high (by 0-13 % on the same
+     * two). Not measured in 2D, where the fit stays, on the safe side. */
+    constexpr double heap_memory = 0.82;
 
     /**
      * @brief Estimated peak memory and time of one state of an FE scene,

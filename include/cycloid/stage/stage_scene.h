@@ -19,6 +19,7 @@
 #include <cycloid/parameters/scene.h>
 #include <cycloid/postprocess/solution_record.h>
 #include <cycloid/results/stage_state.h>
+#include <cycloid/stage/cost_estimate.h>
 
 #include <memory>
 #include <set>
@@ -267,6 +268,10 @@ namespace cycloid
        * hierarchy (the cost model's memory factor). */
       bool
       plain_amg() const;
+      /** The cost model's inputs for this scene at @p n_dofs DoFs: one
+       * state, no adaptive cycle, no error estimate. */
+      CostInputs
+      cost_inputs(dealii::types::global_dof_index n_dofs) const;
       /** Print the cost estimate of the scene (stage/cost_estimate.h) and
        * stop if it does not fit into the available memory. */
       void
