@@ -594,14 +594,14 @@ namespace
 TEST(Heap, FreedSmallBlocksGoBackWhenThePagesAreGivenBack)
 {
   // Small blocks (a dynamic sparsity pattern's rows) stay in the heap; the
-  // libraries' setting never trims it. 200 MB of 1 kB blocks, freed, must
+  // libraries' setting never trims it. 300 MB of 1 kB blocks, freed, must
   // leave the process's resident memory only once the pages are given
   // back. A small block allocated after them keeps the heap's top from
   // being the free space, as in a run, where live data follows.
   elasticity::release_freed_memory(32u << 20);
   ASSERT_EQ(elasticity::mmap_threshold(), 32u << 20)
     << "CYCLOID_MMAP_THRESHOLD is set in the environment";
-  constexpr std::size_t                block = 1024, n = 200 * 1024;
+  constexpr std::size_t                block = 1024, n = 300 * 1024;
   std::vector<std::unique_ptr<char[]>> blocks(n);
   for (auto &b : blocks)
     {
@@ -618,7 +618,7 @@ TEST(Heap, FreedSmallBlocksGoBackWhenThePagesAreGivenBack)
   const std::size_t given_back = resident_bytes();
   // Freeing alone returns (almost) nothing: the pages are still mapped.
   EXPECT_GT(freed + (n * block) / 2, with_blocks);
-  // Given back: at least three quarters of the 200 MB leave.
+  // Given back: at least three quarters of the 300 MB leave.
   EXPECT_LT(given_back + (3 * n * block) / 4, with_blocks)
     << "resident with the blocks " << with_blocks / 1048576 << " MB, freed "
     << freed / 1048576 << " MB, given back " << given_back / 1048576 << " MB";

@@ -113,7 +113,8 @@ namespace cycloid
       many_problem.reset();
       // The old constraints' lines (and the dynamic pattern's rows, if the
       // pattern was rebuilt) are freed: their pages go back before the
-      // assembly and the AMG set-up peak on top of them.
+      // assembly and the AMG set-up peak on top of them (where that is
+      // worth it, see there).
       give_back_freed_pages();
     }
 

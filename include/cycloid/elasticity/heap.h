@@ -45,7 +45,8 @@ namespace cycloid
 
     /**
      * Give the whole free pages inside the heap back to the system
-     * (`malloc_trim(0)`), if release_freed_memory() set a threshold.
+     * (`malloc_trim(0)`), if release_freed_memory() set a threshold and at
+     * least 192 MB of the heap are free.
      *
      * The blocks below the threshold stay in the heap: a dynamic sparsity
      * pattern's rows, the constraints' lines, the index sets. When a new
