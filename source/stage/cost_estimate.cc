@@ -106,10 +106,13 @@ namespace cycloid
       CostEstimate e;
       e.family = f.name;
       e.n_dofs = in.n_dofs;
-      // The heap's factor is measured in 3D only.
-      const double heap =
-        in.dimension == 3 && in.heap_released ? heap_memory : 1.;
-      e.memory_bytes = 1e6 * mb_per_rank * ranks +
+      // The heap's factor is measured in 3D only, and the trim acts only
+      // on large ranks (heap_memory_dofs_per_rank).
+      const double heap = in.dimension == 3 && in.heap_released &&
+                              n / ranks >= heap_memory_dofs_per_rank ?
+                            heap_memory :
+                            1.;
+      e.memory_bytes    = 1e6 * mb_per_rank * ranks +
                        1e3 * f.kb_per_dof * q2 * rank_memory * finest *
                          (in.plain_amg ? plain_amg_memory : 1.) * heap;
       e.seconds_per_state = seconds * (in.degree > 1 ? 1.5 : 1.) *

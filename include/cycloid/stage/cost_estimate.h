@@ -43,12 +43,18 @@ namespace cycloid
     /** Memory per DoF (above the ranks' 150 MB) in 3D when the heap gives
      * freed matrix-sized blocks and the freed small blocks' pages back,
      * relative to the fits' runs, whose heap kept them: 0.80 on the 3D
-     * seed case (1.50 M DoFs) and 0.84 on a 3D two-disc scene of 290 k
-     * DoFs, plain-aggregation hierarchy, shared mesh, 2 ranks
-     * (doc/solver-reuse.md, "The holes of small blocks"). On the
-     * distributed mesh the estimate errs high (by 0-13 % on the same
-     * two). Not measured in 2D, where the fit stays, on the safe side. */
+     * seed case (1.50 M DoFs, plain-aggregation hierarchy, shared mesh, 2
+     * ranks; doc/solver-reuse.md, "The holes of small blocks"). On the
+     * distributed mesh the estimate errs high (by 13 % there). Not
+     * measured in 2D, where the fit stays, on the safe side. */
     constexpr double heap_memory = 0.82;
+
+    /** DoFs per rank from which heap_memory applies. The trim acts only
+     * where at least 192 MB of a rank's heap are free: 235-426 MB at
+     * 750 k DoFs a rank (the seed case), 50-130 MB at 145-290 k, where
+     * a 3D scene of 290 k DoFs peaked at 1104 MB against 1112 MB with the
+     * heap as the libraries left it. */
+    constexpr double heap_memory_dofs_per_rank = 500e3;
 
     /**
      * @brief Estimated peak memory and time of one state of an FE scene,
