@@ -59,11 +59,12 @@ namespace cycloid
     /**
      * @brief Estimated peak memory and time of one state of an FE scene,
      * from a cost model fitted to the measured runs of doc/ladder/ladder.csv
-     * (one state, seed case, this machine; doc/scene-guide.md "Cost
-     * model"): per family (2D; 3D one disc; 3D two discs) peak memory =
-     * 150 MB per rank + a DoFs (a at 2 ranks 2.68, 3.59, 4.38 kB per DoF,
-     * 0.74 of that on 1 rank) and time of a state = c DoFs^p at 2 ranks
-     * (p = 2.06, 1.39, 1.16), (2 / ranks)^0.83 on other rank counts.
+     * and, for the 3D times, doc/ladder/retimed-2026-12-06.csv (one state,
+     * seed case, this machine; doc/scene-guide.md "Cost model"): per
+     * family (2D; 3D one disc; 3D two discs) peak memory = 150 MB per
+     * rank + a DoFs (a at 2 ranks 2.68, 3.59, 4.38 kB per DoF, 0.74 of
+     * that on 1 rank) and time of a state = c DoFs^p at 2 ranks (p =
+     * 2.06, 1.26, 1.16), (2 / ranks)^0.83 on other rank counts.
      * Adaptive cycles add states on meshes 1.15 (2D), 1.28 (3D one disc)
      * or 1.36 (3D two discs) times larger each; degree 2 doubles the
      * memory per DoF and multiplies the time by 1.5 (not fitted: no
