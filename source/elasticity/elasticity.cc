@@ -1179,8 +1179,6 @@ namespace cycloid
             x[i] = u[i];
           x.compress(dealii::VectorOperation::insert);
         }
-      if (!is_direct(solver))
-        start_constrained_rows(constraint_sets[k], rhs, x);
       const bool mass_only = dynamic.stiffness == 0.;
       if (!is_direct(solver) && mass_only)
         {
@@ -1240,29 +1238,6 @@ namespace cycloid
       u.reinit(locally_owned, locally_relevant, comm);
       u = x;
       return iterations;
-    }
-
-
-
-    template <int dim>
-    void
-    LinearElasticity<dim>::start_constrained_rows(
-      const dealii::AffineConstraints<double>     &constraints,
-      const dealii::TrilinosWrappers::MPI::Vector &rhs,
-      dealii::TrilinosWrappers::MPI::Vector       &x) const
-    {
-      // A constrained row of the condensed matrix holds its diagonal alone,
-      // and its column is empty: CG's answer there is rhs/diagonal,
-      // whatever the other rows do. A warm start carries the distributed
-      // value instead (a hanging node's interpolation, a contact node's
-      // normal displacement), and 14-18 % of the rows are constrained in
-      // 3D: their residual outweighed that of the free rows, so a start
-      // from the last active set gained CG almost nothing.
-      for (const auto &line : constraints.get_lines())
-        if (locally_owned.is_element(line.index))
-          x[line.index] =
-            rhs[line.index] / system_matrix.diag_element(line.index);
-      x.compress(dealii::VectorOperation::insert);
     }
 
 

@@ -43,8 +43,10 @@ namespace cycloid
       // runs, -33 to +59 %), the 3D families re-timed on 2026-12-06 with
       // the defaults of that day (doc/ladder/retimed-2026-12-06.csv): the
       // fits of 2026-12-04 (6.421e-7 N^1.386 and 1.816e-5 N^1.158) were
-      // 14-171 % high by then (plain hierarchy, the constrained rows'
-      // start, and a machine running faster than on 2026-12-04). Adaptive
+      // 14-171 % high by then (plain hierarchy, and a machine running
+      // faster than on 2026-12-04). The build also had CG's start set in
+      // the constrained rows, since reverted: the shipped one takes up to
+      // 5-15 % more CG iterations than these runs. Adaptive
       // growth from the runs cr1+ad2 (2D), c1 ax1 cr1+ad1 (3D one disc:
       // 1.28) and the 3D seed case with Target accuracy 0.01 (two cycles,
       // 1.85), since the 3D rule measures cells in the section plane

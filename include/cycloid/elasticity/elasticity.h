@@ -535,17 +535,6 @@ namespace cycloid
       rigid_body_modes(const bool with_rotations) const;
 
     private:
-      /**
-       * Set the owned constrained rows of @p x to the condensed system's
-       * exact answer there (@p rhs over the diagonal), so that CG's start
-       * has no residual in them.
-       */
-      void
-      start_constrained_rows(
-        const dealii::AffineConstraints<double>     &constraints,
-        const dealii::TrilinosWrappers::MPI::Vector &rhs,
-        dealii::TrilinosWrappers::MPI::Vector       &x) const;
-
       /** The support point and vector component of every locally owned
        * DoF, by its row (index within the owned set). */
       void
