@@ -601,7 +601,9 @@ TEST(Heap, FreedSmallBlocksGoBackWhenThePagesAreGivenBack)
   elasticity::release_freed_memory(32u << 20);
   ASSERT_EQ(elasticity::mmap_threshold(), 32u << 20)
     << "CYCLOID_MMAP_THRESHOLD is set in the environment";
-  constexpr std::size_t                block = 1024, n = 300 * 1024;
+  constexpr std::size_t block = 1024, n = 300 * 1024;
+  static_assert(n * block > elasticity::give_back_threshold,
+                "the call gives back only above its threshold");
   std::vector<std::unique_ptr<char[]>> blocks(n);
   for (auto &b : blocks)
     {

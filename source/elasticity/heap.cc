@@ -119,15 +119,8 @@ namespace cycloid
 #if defined(__GLIBC__)
       if (threshold_set == 0)
         return;
-      // Only where there is much to give: each page given back and used
-      // again is faulted in anew. Small runs free their whole system at
-      // each active set (at most about 170 MB a rank: a 2D scene of 148 k
-      // DoFs on one rank) and ran 9 % (3D, 100 k DoFs) to 25 % (that 2D
-      // scene) slower with the trim; the 3D seed case frees 235-426 MB a
-      // rank, where the peak falls by a tenth (doc/solver-reuse.md).
-      constexpr std::size_t worth_it = 192u << 20;
-      const auto            m        = mallinfo2();
-      if (m.fordblks >= worth_it)
+      // Only where there is much to give (give_back_threshold says why).
+      if (mallinfo2().fordblks >= give_back_threshold)
         malloc_trim(0);
 #endif
     }

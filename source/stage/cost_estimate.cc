@@ -35,22 +35,22 @@ namespace cycloid
         double      growth;     ///< DoFs growth of one adaptive cycle.
       };
 
-      // Memory: rms error 3 % (2D, 18 runs), 4 % (3D one disc, 5), 8 %
-      // (3D two discs, 7), fitted on ladder.csv's 2026-12-04 runs (the
-      // smoothed hierarchy; the factors below take today's defaults in).
-      // Time: rms 54 % (2D: seconds dominated by the number of active-set
-      // iterations), 13 % (3D one disc, 3 runs) and 31 % (3D two discs, 7
-      // runs, -33 to +59 %), the 3D families re-timed on 2026-12-06 with
-      // the defaults of that day (doc/ladder/retimed-2026-12-06.csv): the
-      // fits of 2026-12-04 (6.421e-7 N^1.386 and 1.816e-5 N^1.158) were
-      // 14-171 % high by then (plain hierarchy, and a machine running
-      // faster than on 2026-12-04). The build also had CG's start set in
-      // the constrained rows, since reverted: the shipped one takes up to
-      // 5-15 % more CG iterations than these runs. Adaptive
-      // growth from the runs cr1+ad2 (2D), c1 ax1 cr1+ad1 (3D one disc:
-      // 1.28) and the 3D seed case with Target accuracy 0.01 (two cycles,
-      // 1.85), since the 3D rule measures cells in the section plane
-      // (2026-12-05; 2.7 with the 3D diameter).
+      // Memory: fitted on ladder.csv's runs of 2026-12-04 (the smoothed
+      // hierarchy; plain_amg_memory and heap_memory bring it to today's
+      // defaults); rms error 3 % (2D, 18 runs), 4 % (3D one disc, 5), 8 %
+      // (3D two discs, 7).
+      //
+      // Time: 2D from ladder.csv, rms 54 % (a 2D state's seconds follow
+      // its active-set iterations more than its DoFs). 3D from the runs
+      // re-timed on 2026-12-06 (doc/ladder/retimed-2026-12-06.csv), rms
+      // 13 % (one disc, 3 runs) and 31 % (two discs, 7 runs, -33 to
+      // +59 %); the fits of 2026-12-04 were 14-171 % high by then. Those
+      // runs had CG's start set in the constrained rows, since reverted:
+      // the shipped build takes up to 5-15 % more CG iterations.
+      //
+      // Adaptive growth per cycle: cr1+ad2 (2D), c1 ax1 cr1+ad1 (3D one
+      // disc) and the 3D seed case under Target accuracy 0.01 (two
+      // cycles), with the 3D rule measuring cells in the section plane.
       constexpr Family two_d{"2D", 2.681, 2.259e-10, 2.059, 1.15};
       constexpr Family one_disc{"3D one disc", 3.585, 1.416e-6, 1.261, 1.28};
       constexpr Family two_discs{"3D two discs", 4.384, 1.016e-5, 1.162, 1.36};

@@ -43,10 +43,18 @@ namespace cycloid
     std::size_t
     mmap_threshold();
 
+    /** Free heap [bytes] from which give_back_freed_pages() acts. Small
+     * runs free their whole system at each active set (at most about 170
+     * MB a rank: a 2D scene of 148 k DoFs on one rank) and ran 9 % (3D,
+     * 100 k DoFs) to 25 % (that 2D scene) slower with the trim, each page
+     * given back being faulted in anew; the 3D seed case frees 235-426 MB
+     * a rank, where the peak falls by a tenth (doc/solver-reuse.md). */
+    constexpr std::size_t give_back_threshold = 192u << 20;
+
     /**
      * Give the whole free pages inside the heap back to the system
      * (`malloc_trim(0)`), if release_freed_memory() set a threshold and at
-     * least 192 MB of the heap are free.
+     * least give_back_threshold bytes of the heap are free.
      *
      * The blocks below the threshold stay in the heap: a dynamic sparsity
      * pattern's rows, the constraints' lines, the index sets. When a new

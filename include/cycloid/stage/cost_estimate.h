@@ -49,10 +49,12 @@ namespace cycloid
      * measured in 2D, where the fit stays, on the safe side. */
     constexpr double heap_memory = 0.82;
 
-    /** DoFs per rank from which heap_memory applies. The trim acts only
-     * where at least 192 MB of a rank's heap are free: 235-426 MB at
-     * 750 k DoFs a rank (the seed case), 50-130 MB at 145-290 k, where
-     * a 3D scene of 290 k DoFs peaked at 1104 MB against 1112 MB with the
+    /** DoFs per rank from which heap_memory applies: the DoF count at which
+     * a rank frees at least elasticity::give_back_threshold (192 MB) of its
+     * heap, where the trim acts. The estimate comes before the heap exists,
+     * so it cannot read the free heap itself. Measured: 235-426 MB free at
+     * 750 k DoFs a rank (the seed case), 50-130 MB at 145-290 k, where a
+     * 3D scene of 290 k DoFs peaked at 1104 MB against 1112 MB with the
      * heap as the libraries left it. */
     constexpr double heap_memory_dofs_per_rank = 500e3;
 
