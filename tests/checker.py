@@ -86,7 +86,8 @@ def same_state(s0, p0, s1, p1, names, tolerance=1e-8):
 
 def alternate(doc, cases, settings, one, csv_name, columns, work):
     """The command line of a benchmark that compares @p settings side by
-    side (doc: @p doc): --case (default @p cases), --repeat, --exe, --out.
+    side (doc: @p doc): --case (default @p cases), --repeat, --settings
+    (default @p settings), --exe, --out.
     Calls one(exe, case, setting, repeat, work) for every case and repeat
     with the settings alternating, so that neighbouring runs compare on a
     shared machine, and merges the rows into --out/@p csv_name."""
@@ -95,10 +96,12 @@ def alternate(doc, cases, settings, one, csv_name, columns, work):
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--case", default=cases)
     ap.add_argument("--repeat", type=int, default=1)
+    ap.add_argument("--settings", default=",".join(settings),
+                    help="the settings to compare, comma-separated (default: %(default)s)")
     ap.add_argument("--exe", default=os.path.join(root, "build", "cycloid-contact"))
     ap.add_argument("--out", default=os.path.join(root, "doc"))
     a = ap.parse_args()
     chosen = a.case.split(",")
     new = [one(os.path.abspath(a.exe), c, s, r, work)
-           for c in chosen for r in range(a.repeat) for s in settings]
+           for c in chosen for r in range(a.repeat) for s in a.settings.split(",")]
     print("wrote", merge_csv(os.path.join(a.out, csv_name), columns, new, "case", chosen))

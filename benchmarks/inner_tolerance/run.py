@@ -65,7 +65,7 @@ def one(exe, case, setting, repeat, work):
 
 
 def main():
-    alternate(__doc__, "3d-test,3d-290k", ("0", "auto"), one, "inner-tolerance.csv", COLUMNS,
+    alternate(__doc__, "3d-test,3d-290k", ("0", "1e-6", "auto"), one, "inner-tolerance.csv", COLUMNS,
               os.path.join("/tmp", "cycloid-inner-tolerance"))
 
 

@@ -35,7 +35,7 @@ PRM = os.path.join(ROOT, "benchmarks", "ml_aggregation", "two-discs-3d.prm")
 WORK = "/tmp/cycloid-memory"
 LIBRARIES_MB = 150.  # an analytic run peaks at 151 MB per rank
 ITERATION = re.compile(
-    r"iteration (\d+) \((?:tight|loose)\):.*rank 0 resident after assembly "
+    r"iteration (\d+) \((?:tight|loose[^)]*)\):.*rank 0 resident after assembly "
     r"([\d.]+) MB, preconditioner ([\d.]+) MB, solves ([\d.]+) MB, heap in use "
     r"([\d.]+) MB, peak ([\d.]+) MB")
 

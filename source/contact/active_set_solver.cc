@@ -37,6 +37,18 @@ namespace cycloid
 
 
 
+      /** A CG tolerance as the debug output prints it, e.g. 1e-05. */
+      std::string
+      tolerance_label(const double tolerance)
+      {
+        std::ostringstream s;
+        s.precision(0);
+        s << std::scientific << tolerance;
+        return s.str();
+      }
+
+
+
       /** This process's resident memory now [MB] (debug output). */
       double
       resident_MB()
@@ -120,7 +132,8 @@ namespace cycloid
       // measure of the contact forces.
       bool tight = settings.inner_tolerance <= settings.solver_tolerance ||
                    problem.dynamic_terms().mass != 0.;
-      bool assembled = false;
+      double loose     = settings.inner_tolerance;
+      bool   assembled = false;
       // Set after a cycle: the union of its sets is being solved.
       bool cycle_union = false;
       warm_start(solution);
@@ -162,15 +175,15 @@ namespace cycloid
           else
             // A cycle's union is solved 100 times tighter: the nodes that
             // came and went carry forces at the level of CG's residual.
-            solve_linear_systems((tight ? settings.solver_tolerance :
-                                          settings.inner_tolerance) *
+            solve_linear_systems((tight ? settings.solver_tolerance : loose) *
                                    (cycle_union ? cycle_tightening : 1.),
                                  state);
           state.preconditioner_setups +=
             problem.n_preconditioner_builds() - builds;
           if (verbose)
             std::cerr << "  [active set] " << label << ", iteration " << it
-                      << (tight ? " (tight)" : " (loose)")
+                      << (tight ? std::string(" (tight)") :
+                                  " (loose " + tolerance_label(loose) + ")")
                       << ": constraints+assembly " << t_assemble
                       << " s, preconditioner " << t_preconditioner - t_assemble
                       << " s, solves " << clock.wall_time() - t_preconditioner
@@ -192,6 +205,10 @@ namespace cycloid
                       << heap_layout() << "; peak after assembly " << p_assemble
                       << " MB, after preconditioner " << p_preconditioner
                       << " MB" << std::endl;
+
+          if (!tight)
+            loose = std::max(loose * loose_tightening,
+                             settings.inner_tolerance_floor);
 
           std::set<unsigned int> next;
           SetChange              change;

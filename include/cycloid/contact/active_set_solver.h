@@ -66,8 +66,9 @@ namespace cycloid
      * two solves u0, u1 (for a fixed set u = u0 + beta u1), the beta that
      * meets the load (load control) or the given beta, and the next set
      * from the nodal reactions and gaps. While the set changes, the solves
-     * stop at ContactSettings::inner_tolerance (they only decide the next
-     * set); once it repeats, the same system is solved again to
+     * stop at ContactSettings::inner_tolerance, each next one ten times
+     * tighter down to ContactSettings::inner_tolerance_floor (they only
+     * decide the next set); once it repeats, the same system is solved again to
      * solver_tolerance and the set checked once more, so the reported state
      * is a tight solution. A set that moved by at most 1 % of its nodes is
      * solved tight at once, and so is every set of a time step (a mass
@@ -227,6 +228,13 @@ namespace cycloid
 
       /** The factor on the CG tolerance of the solve of a cycle's union. */
       static constexpr double cycle_tightening = 1e-2;
+
+      /** The factor from one loose solve's tolerance to the next one's in
+       * a state. The first loose solve only has to find the bulk of the
+       * set; the later ones decide the nodes at the edge of a contact,
+       * whose forces are small, so they solve tighter (measured:
+       * doc/solver-reuse.md, "A loose solve that tightens"). */
+      static constexpr double loose_tightening = 0.1;
 
       /** The state's displacement, equilibrium residual (checked) and
        * slave reactions. */
