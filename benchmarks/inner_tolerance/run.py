@@ -1,11 +1,13 @@
 #!/usr/bin/python3
 """Loose CG solves while the active set changes: `Solver/Inner tolerance =
-0` (every solve to Relative tolerance, 1e-10) against `= auto` (1e-6 in 3D
-until the set repeats or moves by at most 1 % of its nodes, then tight),
-side by side on the same prm (issue #14 item 1 and the time of a 3D state).
+0` (every solve to Relative tolerance, 1e-10), `= 1e-6` (every loose solve
+at 1e-6, the auto of 2026-12-04) and `= auto` (in 3D the first loose solve
+of a state at 1e-4, each next one ten times tighter down to 1e-6, until the
+set repeats or moves by at most 1 % of its nodes, then tight), side by side
+on the same prm (issue #14 item 1 and the time of a 3D state).
 
 Usage: benchmarks/inner_tolerance/run.py [--case NAME[,NAME]] [--repeat K]
-           [--exe EXE] [--out DIR]
+           [--settings S[,S]] [--exe EXE] [--out DIR]
 
 Cases (prm files of the repository, run as they are, no VTU output, 2 ranks):
   3d-test   tests/runs/quasi-static-3d-housing.prm: two discs, pins in the
@@ -13,10 +15,12 @@ Cases (prm files of the repository, run as they are, no VTU output, 2 ranks):
   3d-290k   benchmarks/ml_aggregation/two-discs-3d.prm: two discs, pins in
             the housing, 290 244 DoFs, 200 N m
   3d-seed   prm/quasi-static-3d.prm: the 3D seed case, 1.5 M DoFs, 1000 N m
-            (not in the default list: about 10-12 minutes a pair)
+            (not in the default list: about 8 minutes for the three
+            settings)
 
-The two settings alternate (0, auto, 0, ...), so neighbouring runs compare on
-a shared machine. Each run has CYCLOID_DEBUG=1; the tight and loose solves are
+The settings alternate (0, 1e-6, auto, 0, ...; --settings chooses others,
+any value the entry takes), so neighbouring runs compare on a shared
+machine. Each run has CYCLOID_DEBUG=1; the tight and loose solves are
 counted from its debug output. Output: --out/inner-tolerance.csv (doc/
 inner-tolerance.csv), one row per case, setting and repeat; rows of other
 cases already in it are kept. Times are for the whole command.
