@@ -60,7 +60,7 @@ def check_sequence(seq, first):
     loose = [tol for t, *_, tol in seq if t == "loose"]
     check(len(loose) >= 3, "Inner tolerance = %g made %d loose solves, not 3 or more" % (first, len(loose)))
     # The first loose solve at Inner tolerance, each next one ten times
-    # tighter down to 1e-6 (ContactParameters::inner_floor()).
+    # tighter down to 1e-6 (ActiveSetSolver::loose_floor).
     expected = [max(first * 0.1**k, 1e-6) for k in range(len(loose))]
     check(all(tol is not None and abs(tol - e) <= 1e-3 * e for tol, e in zip(loose, expected)),
           "loose tolerances %s, expected %s" % (loose, expected))

@@ -132,8 +132,10 @@ namespace cycloid
       // measure of the contact forces.
       bool tight = settings.inner_tolerance <= settings.solver_tolerance ||
                    problem.dynamic_terms().mass != 0.;
-      double loose     = settings.inner_tolerance;
-      bool   assembled = false;
+      double       loose = settings.inner_tolerance;
+      const double tightest =
+        std::max(std::min(loose, loose_floor), settings.solver_tolerance);
+      bool assembled = false;
       // Set after a cycle: the union of its sets is being solved.
       bool cycle_union = false;
       warm_start(solution);
@@ -207,8 +209,7 @@ namespace cycloid
                       << " MB" << std::endl;
 
           if (!tight)
-            loose = std::max(loose * loose_tightening,
-                             settings.inner_tolerance_floor);
+            loose = std::max(loose * loose_tightening, tightest);
 
           std::set<unsigned int> next;
           SetChange              change;

@@ -107,9 +107,9 @@ namespace cycloid
           "is solved to Relative tolerance, and every set after it. Time "
           "steps always solve tight: their right-hand side is dominated by "
           "inertia, and a loose solve of it cannot decide contact. auto: "
-          "1e-4 in 3D (measured on the 3D seed case: 0.72 of the time of a "
-          "constant 1e-6, which took 0.7 of the time of tight solves), 0 "
-          "in 2D (it saved nothing there; doc/solver-reuse.md).");
+          "1e-4 in 3D (measured on the 3D seed case: 0.69-0.80 of the time "
+          "of a constant 1e-6, which took 0.7 of the time of tight "
+          "solves), 0 in 2D (doc/solver-reuse.md).");
         prm.declare_entry("Preconditioner reuse",
                           "false",
                           Bool(),

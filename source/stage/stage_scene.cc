@@ -194,16 +194,15 @@ namespace cycloid
 
       const auto              &c = settings.contact;
       contact::ContactSettings cs;
-      cs.max_iterations        = c.max_active_set_iterations;
-      cs.search_distance       = c.search_distance;
-      cs.solver_tolerance      = c.solver_tolerance;
-      cs.inner_tolerance       = c.inner(dim);
-      cs.inner_tolerance_floor = c.inner_floor(dim);
-      cs.reuse_preconditioner  = c.reuse_preconditioner;
-      cs.residual_tolerance    = c.residual_tolerance;
-      cs.formulation           = c.formulation;
-      cs.solver                = c.linear_solver;
-      cs.amg_hierarchy         = c.hierarchy(dim);
+      cs.max_iterations       = c.max_active_set_iterations;
+      cs.search_distance      = c.search_distance;
+      cs.solver_tolerance     = c.solver_tolerance;
+      cs.inner_tolerance      = c.inner(dim);
+      cs.reuse_preconditioner = c.reuse_preconditioner;
+      cs.residual_tolerance   = c.residual_tolerance;
+      cs.formulation          = c.formulation;
+      cs.solver               = c.linear_solver;
+      cs.amg_hierarchy        = c.hierarchy(dim);
       // The Schur path takes its rows from the hanging and support lines
       // of the cells a rank holds: on a distributed mesh they differ
       // between the ranks, so it runs on the shared mesh only.

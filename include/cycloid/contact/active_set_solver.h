@@ -67,7 +67,7 @@ namespace cycloid
      * meets the load (load control) or the given beta, and the next set
      * from the nodal reactions and gaps. While the set changes, the solves
      * stop at ContactSettings::inner_tolerance, each next one ten times
-     * tighter down to ContactSettings::inner_tolerance_floor (they only
+     * tighter down to loose_floor (they only
      * decide the next set); once it repeats, the same system is solved again to
      * solver_tolerance and the set checked once more, so the reported state
      * is a tight solution. A set that moved by at most 1 % of its nodes is
@@ -235,6 +235,13 @@ namespace cycloid
        * whose forces are small, so they solve tighter (measured:
        * doc/solver-reuse.md, "A loose solve that tightens"). */
       static constexpr double loose_tightening = 0.1;
+
+      /** The tolerance the loose solves tighten to, unless
+       * ContactSettings::inner_tolerance is tighter already: from there
+       * on a loose solve decides the nodes at the edge of a contact as a
+       * tight one does (a constant 1e-6 never took more sets than tight
+       * solves in the cases measured). */
+      static constexpr double loose_floor = 1e-6;
 
       /** The state's displacement, equilibrium residual (checked) and
        * slave reactions. */

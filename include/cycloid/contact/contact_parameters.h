@@ -71,9 +71,10 @@ namespace cycloid
 
       /** The inner tolerance of a scene of dimension @p dim, the first
        * loose solve's of a state: auto is 1e-4 in 3D, where a state's CG
-       * iterations are its cost (the 3D seed case takes 0.72 of the time
-       * of a constant 1e-6), and tight in 2D, where loose solves saved
-       * nothing (doc/solver-reuse.md). */
+       * iterations are its cost (the 3D seed case takes 0.78 of the CG
+       * iterations and 0.69-0.80 of the time of a constant 1e-6), and
+       * tight in 2D, where a loose final start upset a 1e-8 torque
+       * balance (doc/solver-reuse.md). */
       double
       inner(const unsigned int dim) const
       {
@@ -81,19 +82,6 @@ namespace cycloid
                                                        inner_tolerance,
                         solver_tolerance);
       }
-
-      /** The tightest loose solve of a scene of dimension @p dim: the
-       * loose solves of a state tighten tenfold from inner() down to
-       * 1e-6 (or inner() if that is tighter), where the nodes at the edge
-       * of a contact are decided as a tight solve decides them. */
-      double
-      inner_floor(const unsigned int dim) const
-      {
-        return std::max(std::min(inner(dim), loose_floor), solver_tolerance);
-      }
-
-      /** The tolerance the loose solves tighten to (inner_floor()) [-]. */
-      static constexpr double loose_floor = 1e-6;
 
       /** The AMG hierarchy of a scene of dimension @p dim: auto is plain
        * aggregation with a W-cycle in 3D, where the smoothed hierarchy's

@@ -158,9 +158,6 @@ namespace cycloid
        * active set still changes (the state's last iteration solves to
        * solver_tolerance). */
       double inner_tolerance = 1e-10;
-      /** Each further loose solve of a state is ten times tighter than
-       * the one before, down to this tolerance. */
-      double inner_tolerance_floor = 1e-10;
       /** Keep one sparsity pattern and the AMG hierarchy over the active
        * sets, states and time steps of one mesh (rebuilt when the CG
        * iterations rise); false: a new pattern and hierarchy per set. */
