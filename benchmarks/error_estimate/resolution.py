@@ -38,28 +38,9 @@ import validate  # noqa: E402
 
 ROOT = validate.ROOT
 LEVELS_2D = [0, 1, 2, 3, 4]
-# Held out of the fit: a reducer of other proportions (zp 30, rrp 4 mm,
-# e 1.5 mm, K1 0.6, b 12 mm; the issue-15 "other reducer"), modified
-# profile, elastic pins, 300 N m.
-HELD_OUT_2D = {
-    "2D other reducer (zp 30), modified, 300 N m": ("""
-subsection Geometry
-  set Number of pins = 30
-  set Pin radius = 4
-  set Eccentricity = 1.5
-  set Shortening coefficient = 0.6
-  set Tooth width = 12
-  set Pin circle radius modification = -0.01
-  set Pin radius modification = 0.005
-end
-subsection Scene
-  set Number of discs = 1
-end
-subsection Loading
-  set Torque = 300
-end
-""", None, 5),
-}
+# Held out of the fit (C is fitted on validate.CASES_2D): validate.OTHER_2D,
+# a reducer of other proportions.
+HELD_OUT_2D = validate.OTHER_2D
 LEVELS_3D = [1, 2]
 # The ladder's 3D two-disc meshes: name -> (contact element size [mm],
 # contact refinements at the loaded pins).
