@@ -11,12 +11,17 @@ the safe side (>= 1).
 
   /usr/bin/python3 benchmarks/error_estimate/validate.py [--3d] [--ranks 2]
   /usr/bin/python3 benchmarks/error_estimate/validate.py --ladder
+  /usr/bin/python3 benchmarks/error_estimate/validate.py --bulk
 
 Writes doc/error-estimate/validation.csv (--3d: validation-3d.csv). With
 --ladder nothing is run: the estimator's formula is applied to the nested
 3D mesh sequences of the scene ladder (doc/ladder/ladder.csv), whose errors
 against the ladder's reference are known, and doc/error-estimate/ladder-3d.csv
-is written.
+is written. With --bulk the 2D cases are solved with Mesh/Bulk error
+estimate = true and compared with Q2 at Contact refinements 3 (bulk.py's
+run), whose bulk error is small: the reference of validate.py shares the
+bulk mesh of the runs and cannot see the bulk's error
+(doc/error-estimate/validation-bulk.csv).
 """
 import argparse
 import csv
@@ -166,14 +171,53 @@ def ladder():
         w.writerows(rows)
 
 
+def bulk_validation(ranks):
+    """The estimate with the bulk mesh's part against Q2 (see above)."""
+    import bulk  # noqa: E402 (imports this module)
+    cases = dict(CASES_2D)
+    cases.update(OTHER_2D)
+    rows = []
+    for name, (body, levels, _) in cases.items():
+        rs, rp = bulk.variant(name, body, "Q2, Contact refinements 3", ranks)
+        fmax = max(rp.values())
+        with_bulk = body + "subsection Mesh\n  set Bulk error estimate = true\nend\n"
+        for cr in levels:
+            s, p = run(name + " bulk", with_bulk, cr, True, ranks)
+            true = {
+                "K_secant": abs(float(s["K_secant_Nm_per_rad"]) / float(rs["K_secant_Nm_per_rad"]) - 1),
+                "K_tangent": abs(float(s["K_tangent_Nm_per_rad"]) / float(rs["K_tangent_Nm_per_rad"]) - 1),
+                "pin_forces": max(abs(p[k] - rp[k]) for k in rp) / fmax,
+            }
+            est = {"K_secant": float(s["K_secant_error"]), "K_tangent": float(s["K_tangent_error"]),
+                   "pin_forces": float(s["max_pin_force_error"])}
+            for q in true:
+                rows.append({"case": name, "contact_refinements": cr, "dofs": s["dofs"], "quantity": q,
+                             "estimate_pct": 100 * est[q], "bulk_part_max_pct": 100 * float(s["bulk_error"]),
+                             "true_error_pct": 100 * true[q], "ratio": est[q] / true[q],
+                             "mesh_warning": s["mesh_warning"], "wall_s": s["wall_s"]})
+                r = rows[-1]
+                print(f"{name:44s} cr{cr} {q:10s} est {r['estimate_pct']:7.3f} %  true {r['true_error_pct']:7.3f} %"
+                      f"  ratio {r['ratio']:6.2f}", flush=True)
+    with open(os.path.join(ROOT, "doc", "error-estimate", "validation-bulk.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    n = len(rows)
+    print(f"{sum(0.5 <= r['ratio'] <= 2 for r in rows)}/{n} within a factor 2, "
+          f"{sum(r['ratio'] >= 1 for r in rows)}/{n} on the safe side")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--3d", dest="three", action="store_true")
     ap.add_argument("--ladder", action="store_true")
+    ap.add_argument("--bulk", action="store_true")
     ap.add_argument("--ranks", type=int, default=2)
     args = ap.parse_args()
     if args.ladder:
         return ladder()
+    if args.bulk:
+        return bulk_validation(args.ranks)
     cases = dict(CASES_2D)
     cases.update(OTHER_2D)
     if args.three:

@@ -43,7 +43,7 @@ namespace cycloid
              "max_pin_force_N,linear_iterations,peak_memory_MB,"
              "transmission_error_arcsec,preconditioner_setups,"
              "K_secant_error,K_tangent_error,max_pin_force_error,"
-             "mesh_warning,hertz_nodes,resolution_error";
+             "mesh_warning,hertz_nodes,resolution_error,bulk_error";
     }
 
 
@@ -211,7 +211,7 @@ namespace cycloid
                 << s.preconditioner_setups << ',' << s.error.k_secant << ','
                 << s.error.k_tangent << ',' << s.error.max_pin_force << ','
                 << (flag(s) ? 1 : 0) << ',' << max_pin_hertz_nodes(s) << ','
-                << results::resolution_error(s) << '\n';
+                << results::resolution_error(s) << ',' << s.error.bulk << '\n';
       ++n_written;
       if (flag(s))
         ++n_flagged;
@@ -331,6 +331,12 @@ namespace cycloid
 
 
 
+    const char *const Report::bulk_advice =
+      "Mesh/Global refinements, or smaller Flank, Pin and Coarse element "
+      "sizes, reduce it.";
+
+
+
     void
     Report::print_estimate(const results::StageState &s) const
     {
@@ -345,7 +351,11 @@ namespace cycloid
                 << s.error.contact_level - 2 << " to " << s.error.contact_level
                 << "): K_secant " << pct(s.error.k_secant) << ", K_tangent "
                 << pct(s.error.k_tangent) << ", pin forces "
-                << pct(s.error.max_pin_force) << " of the largest" << std::endl;
+                << pct(s.error.max_pin_force) << " of the largest";
+      if (!std::isnan(s.error.bulk))
+        std::cout << "; of these the bulk mesh's part up to "
+                  << pct(s.error.bulk);
+      std::cout << std::endl;
       if (!flag(s))
         return;
       std::cout << "    WARNING: the estimate exceeds Mesh/Warning threshold ("
@@ -355,6 +365,10 @@ namespace cycloid
       for (unsigned int i = 0; i < pins.size(); ++i)
         std::cout << (i == 0 ? "; pin forces off by up to: " : ", ") << pins[i];
       std::cout << ". " << options.refine_advice << std::endl;
+      if (s.error.bulk > 0.5 * options.warning_threshold)
+        std::cout << "    The bulk mesh's part (" << pct(s.error.bulk)
+                  << ") is not reduced by contact refinements: " << bulk_advice
+                  << std::endl;
     }
 
 

@@ -58,6 +58,48 @@ namespace cycloid
 
 
 
+    BulkError
+    bulk_error(const StageState &bulk, const StageState &state)
+    {
+      AssertThrow(bulk.pins.size() == state.pins.size(),
+                  dealii::ExcDimensionMismatch(bulk.pins.size(),
+                                               state.pins.size()));
+      const double f = bulk_change_factor;
+      BulkError    b;
+      b.k_secant  = f * std::abs(bulk.k_secant() / state.k_secant() - 1);
+      b.k_tangent = f * std::abs(bulk.k_tangent / state.k_tangent - 1);
+      for (unsigned int k = 0; k < state.pins.size(); ++k)
+        b.fn.push_back(f * std::abs(bulk.pins[k].fn - state.pins[k].fn));
+      return b;
+    }
+
+
+
+    void
+    add_bulk_error(const BulkError &b, StageState &state)
+    {
+      AssertThrow(b.fn.size() == state.pins.size(),
+                  dealii::ExcDimensionMismatch(b.fn.size(), state.pins.size()));
+      auto &e = state.error;
+      e.k_secant += b.k_secant;
+      e.k_tangent += b.k_tangent;
+      double largest = 0, pins = 0;
+      for (unsigned int k = 0; k < state.pins.size(); ++k)
+        {
+          auto &p = state.pins[k];
+          p.fn_error += b.fn[k];
+          largest = std::max(largest, p.fn_error);
+          pins    = std::max(pins, b.fn[k]);
+        }
+      const double f_max = state.max_pin_force();
+      e.max_pin_force =
+        f_max > 0 ? largest / f_max : std::numeric_limits<double>::quiet_NaN();
+      e.bulk =
+        std::max({b.k_secant, b.k_tangent, f_max > 0 ? pins / f_max : 0.});
+    }
+
+
+
     double
     resolution_error(const StageState &state)
     {

@@ -36,6 +36,7 @@ namespace cycloid
         f(s.error.k_secant);
         f(s.error.k_tangent);
         f(s.error.max_pin_force);
+        f(s.error.bulk);
         f(s.error.contact_level);
       }
 

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -588,7 +589,7 @@ namespace cycloid
 
     template <int dim>
     bool
-    StageScene<dim>::refinement_fits()
+    StageScene<dim>::refinement_fits(const std::string &what)
     {
       // Each cell counted by its owner (a shared mesh has the same flags
       // on every rank, a distributed one on the owner's cells).
@@ -606,9 +607,8 @@ namespace cycloid
       if (needed <= available)
         return true;
       std::ostringstream why;
-      why << std::setprecision(3) << "the next refinement at the contacts ("
-          << flagged << " cells, about " << dofs
-          << " DoFs) would need an estimated " << needed / 1e9
+      why << std::setprecision(3) << what << " (" << flagged << " cells, about "
+          << dofs << " DoFs) would need an estimated " << needed / 1e9
           << " GB, more than the " << available / 1e9
           << " GB available (MemAvailable and what the run holds)";
       memory_stop = why.str();
@@ -749,6 +749,69 @@ namespace cycloid
 
     template <int dim>
     bool
+    StageScene<dim>::solve_bulk_level(const double         load,
+                                      results::StageState &bulk,
+                                      SolveCost           &cost)
+    {
+      const auto               n_cells  = tria->n_global_active_cells();
+      const auto               original = contact->active_set_snapshot();
+      const unsigned int       g        = settings.mesh.global_refinements;
+      std::set<dealii::CellId> refined;
+      {
+        dealii::TimerOutput::Scope t(timing, "error estimate: bulk refine");
+        for (const auto &cell : tria->active_cell_iterators())
+          if (!cell->is_artificial() &&
+              static_cast<unsigned int>(cell->level()) == g)
+            cell->set_refine_flag();
+        tria->prepare_coarsening_and_refinement();
+        if (!refinement_fits("the bulk level's refinement"))
+          {
+            for (const auto &cell : tria->active_cell_iterators())
+              cell->clear_refine_flag();
+            return false;
+          }
+        // Every rank gets every refined cell (on a distributed mesh a
+        // parent may move to another rank with the new partition).
+        std::vector<dealii::CellId::binary_type> mine;
+        for (const auto &cell : tria->active_cell_iterators())
+          if (cell->is_locally_owned() && cell->refine_flag_set())
+            mine.push_back(cell->id().template to_binary<dim>());
+        for (const auto &part : dealii::Utilities::MPI::all_gather(comm, mine))
+          for (const auto &id : part)
+            refined.insert(dealii::CellId(id));
+        tria->execute_coarsening_and_refinement();
+        rebuild(original);
+      }
+      bool solved = true;
+      try
+        {
+          bulk = solve_level(load, cost);
+        }
+      catch (const std::exception &e)
+        {
+          coarse_failure = trimmed(e.what());
+          solved         = false;
+        }
+      dealii::TimerOutput::Scope t(timing, "error estimate: bulk refine");
+      // Back to the mesh asked for: coarsen the children of the cells
+      // refined above.
+      for (const auto &cell : tria->active_cell_iterators())
+        if (!cell->is_artificial() && cell->level() > 0 &&
+            refined.count(cell->parent()->id()) > 0)
+          cell->set_coarsen_flag();
+      tria->execute_coarsening_and_refinement();
+      rebuild(original);
+      AssertThrow(tria->n_global_active_cells() == n_cells,
+                  dealii::ExcMessage("the error estimate's bulk level did "
+                                     "not coarsen back to the mesh asked "
+                                     "for."));
+      return solved;
+    }
+
+
+
+    template <int dim>
+    bool
     StageScene<dim>::refine_again(const unsigned int         cycle,
                                   const bool                 have_coarse,
                                   const results::StageState &fine) const
@@ -756,8 +819,11 @@ namespace cycloid
       const auto &m = settings.mesh;
       if (cycle < m.adaptive_cycles)
         return true;
+      // A bulk part at the target already leaves nothing for the contact
+      // refinements to gain.
       return m.error.target_accuracy > 0 && have_coarse &&
              fine.error.largest() > m.error.target_accuracy &&
+             !(fine.error.bulk >= m.error.target_accuracy) &&
              cycle < m.adaptive_cycles + m.error.max_cycles;
     }
 
@@ -853,6 +919,25 @@ namespace cycloid
                                     levels[1],
                                     fine,
                                     contact_level());
+      std::optional<results::BulkError> bulk;
+      if (have_coarse && settings.mesh.error.bulk)
+        {
+          results::StageState refined;
+          if (solve_bulk_level(load, refined, cost))
+            {
+              bulk = results::bulk_error(refined, fine);
+              results::add_bulk_error(*bulk, fine);
+            }
+          else
+            {
+              pcout << "  no bulk error estimate: "
+                    << (memory_stop.empty() ? coarse_failure : memory_stop)
+                    << std::endl;
+              // Neither is about the contact levels reported later.
+              memory_stop.clear();
+              coarse_failure.clear();
+            }
+        }
       for (unsigned int cycle = 0; refine_again(cycle, have_coarse, fine);
            ++cycle)
         {
@@ -866,6 +951,8 @@ namespace cycloid
                                         levels[1],
                                         fine,
                                         contact_level());
+          if (bulk)
+            results::add_bulk_error(*bulk, fine);
         }
       if (!coarse_failure.empty() && !fine.error.available())
         fine.error.failure = coarse_failure;
@@ -902,6 +989,11 @@ namespace cycloid
                     ") or Mesh/Contact refinements would "
                     "go further")
             << std::endl;
+      if (s.error.largest() > target && s.error.bulk > 0.5 * target)
+        pcout << "  the bulk mesh's part of the estimate is " << s.error.bulk
+              << ": the target's cycles refine at the "
+              << "contacts and do not reduce it; "
+              << postprocess::Report::bulk_advice << std::endl;
     }
 
 

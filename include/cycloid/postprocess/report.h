@@ -189,6 +189,10 @@ namespace cycloid
       static std::string
       rigidity_header();
 
+      /** The cure of an estimate whose bulk mesh's part is too large
+       * (Mesh/Bulk error estimate): contact refinements do not reduce it. */
+      static const char *const bulk_advice;
+
     private:
       /** The stiffness and rotation of one load over the crank angles, in
        * order. */

@@ -116,6 +116,10 @@ namespace cycloid
       double k_tangent = std::numeric_limits<double>::quiet_NaN();
       /** Of every pin force, relative to the largest pin force [-]. */
       double max_pin_force = std::numeric_limits<double>::quiet_NaN();
+      /** The bulk mesh's part of the estimate (Mesh/Bulk error
+       * estimate), the largest of its parts of the three figures above,
+       * which include it; NaN where not estimated [-]. */
+      double bulk = std::numeric_limits<double>::quiet_NaN();
       /** Contact refinement level of the state above the mesh's global
        * refinements (the finer of the two levels compared). */
       unsigned int contact_level = 0;

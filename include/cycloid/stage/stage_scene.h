@@ -304,6 +304,17 @@ namespace cycloid
       solve_coarser_levels(const double                      load,
                            std::vector<results::StageState> &coarser,
                            SolveCost                        &cost);
+      /** The bulk level: refine once every cell that no contact
+       * refinement reached (the cells of the mesh's global refinement
+       * level), solve @p load there warm-started from the mesh's active
+       * set, and coarsen back to the mesh asked for. The state on the
+       * refined bulk, or false (nothing changed) if the refinement would
+       * not fit into the memory available or the solve failed
+       * (coarse_failure says why). */
+      bool
+      solve_bulk_level(const double         load,
+                       results::StageState &bulk,
+                       SolveCost           &cost);
       /** Coarsen every cell of the finest level; returns the parents
        * (now active) of the cells coarsened. */
       std::set<dealii::CellId>
@@ -326,13 +337,15 @@ namespace cycloid
       /** Whether the mesh with the refine flags now set fits into the
        * memory available, by the cost model, its DoFs taken in proportion
        * to the active cells; if not, says so on the console and records
-       * it in memory_stop. The flags must be prepared
+       * it in memory_stop, naming the refinement as @p what. The flags
+       * must be prepared
        * (prepare_coarsening_and_refinement()). Why: in 3D one refinement
        * at every active node multiplied the seed case's DoFs by five
        * (1.5 M to 7.5 M), and the run was killed for memory with its
        * state lost. */
       bool
-      refinement_fits();
+      refinement_fits(
+        const std::string &what = "the next refinement at the contacts");
       /** Print whether @p s met `Mesh/Target accuracy` (if set). */
       void
       report_accuracy(const results::StageState &s) const;
