@@ -17,10 +17,15 @@ estimate on and no target, the script solves it
   and the bulk part of the K_secant estimate is within a factor of 2 of
   the distance from Q2 (twice the change of one bulk refinement, against
   the change to Q2: measured 1.4-1.7 on five 2D cases). It fails if the
-  bulk level does not refine the bulk or the factor is wrong.
+  bulk level does not refine the bulk or the factor is wrong;
+* with Target accuracy 0.005, below the bulk part (0.86 %): the target's
+  cycles still refine at the contacts (the state ends above contact level
+  2), the target is reported NOT reached, and the console names the bulk
+  part and its cure.
 """
 import argparse
 import os
+import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -71,6 +76,16 @@ def main():
     check(0.5 * distance <= part <= 2 * distance,
           "the bulk part of the K_secant estimate, %.4g %%, is not within a factor 2 of the distance from Q2, %.4g %%"
           % (100 * part, 100 * distance))
+
+    st, _, logt = run(args.exe, text, args.work, "target",
+                      dict(BASE, **{"Bulk error estimate": "true", "Target accuracy": 0.005}))
+    level = re.search(r"target accuracy 0.005: NOT reached at contact level (\d+)", logt)
+    print("target 0.005 with the bulk part %.3g %%: %s" % (100 * float(st["bulk_error"]),
+                                                         level.group(0) if level else "no NOT reached line"))
+    check(level is not None, "target 0.005: not reported NOT reached")
+    check(level is not None and int(level.group(1)) > 2,
+          "target 0.005: the cycles did not refine at the contacts")
+    check("the bulk mesh's part of the estimate is" in logt, "target 0.005: the bulk part and its cure not named")
     return verdict()
 
 

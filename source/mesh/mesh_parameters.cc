@@ -118,9 +118,10 @@ namespace cycloid
           "2D 0.06-0.43 % of K_secant at the default element sizes. The "
           "extra solve has 2-3 times the DoFs of the first mesh in 2D (a "
           "2D run takes about a quarter longer) and about eight times its "
-          "bulk DoFs in 3D. Needs Error estimate; Target accuracy refines at the "
-          "contacts only, so a bulk part above the target leaves it not "
-          "reached, with the cure named [-].");
+          "bulk DoFs in 3D. Needs Error estimate. Target accuracy's cycles "
+          "refine at the contacts and aim at the contact part; the bulk "
+          "part is added after them, and if the sum exceeds the target the "
+          "run says so and names the cure [-].");
         prm.declare_entry("Warning threshold",
                           "0.02",
                           Double(0, 1),

@@ -811,6 +811,26 @@ namespace cycloid
 
 
     template <int dim>
+    std::optional<results::BulkError>
+    StageScene<dim>::measure_bulk_error(const double               load,
+                                        const results::StageState &fine,
+                                        SolveCost                 &cost)
+    {
+      results::StageState refined;
+      if (solve_bulk_level(load, refined, cost))
+        return results::bulk_error(refined, fine);
+      pcout << "  no bulk error estimate: "
+            << (memory_stop.empty() ? coarse_failure : memory_stop)
+            << std::endl;
+      // Neither is about the contact levels reported later.
+      memory_stop.clear();
+      coarse_failure.clear();
+      return std::nullopt;
+    }
+
+
+
+    template <int dim>
     bool
     StageScene<dim>::refine_again(const unsigned int         cycle,
                                   const bool                 have_coarse,
@@ -819,11 +839,8 @@ namespace cycloid
       const auto &m = settings.mesh;
       if (cycle < m.adaptive_cycles)
         return true;
-      // A bulk part at the target already leaves nothing for the contact
-      // refinements to gain.
       return m.error.target_accuracy > 0 && have_coarse &&
              fine.error.largest() > m.error.target_accuracy &&
-             !(fine.error.bulk >= m.error.target_accuracy) &&
              cycle < m.adaptive_cycles + m.error.max_cycles;
     }
 
@@ -921,23 +938,7 @@ namespace cycloid
                                     contact_level());
       std::optional<results::BulkError> bulk;
       if (have_coarse && settings.mesh.error.bulk)
-        {
-          results::StageState refined;
-          if (solve_bulk_level(load, refined, cost))
-            {
-              bulk = results::bulk_error(refined, fine);
-              results::add_bulk_error(*bulk, fine);
-            }
-          else
-            {
-              pcout << "  no bulk error estimate: "
-                    << (memory_stop.empty() ? coarse_failure : memory_stop)
-                    << std::endl;
-              // Neither is about the contact levels reported later.
-              memory_stop.clear();
-              coarse_failure.clear();
-            }
-        }
+        bulk = measure_bulk_error(load, fine, cost);
       for (unsigned int cycle = 0; refine_again(cycle, have_coarse, fine);
            ++cycle)
         {
@@ -951,9 +952,12 @@ namespace cycloid
                                         levels[1],
                                         fine,
                                         contact_level());
-          if (bulk)
-            results::add_bulk_error(*bulk, fine);
         }
+      // The target's cycles refine at the contacts, so they aim at the
+      // contact levels' estimate; the bulk part, which they cannot reduce,
+      // joins it for the state reported.
+      if (bulk)
+        results::add_bulk_error(*bulk, fine);
       if (!coarse_failure.empty() && !fine.error.available())
         fine.error.failure = coarse_failure;
       report_accuracy(fine);

@@ -18,10 +18,12 @@
 #include <cycloid/parameters/material.h>
 #include <cycloid/parameters/scene.h>
 #include <cycloid/postprocess/solution_record.h>
+#include <cycloid/results/error_estimate.h>
 #include <cycloid/results/stage_state.h>
 #include <cycloid/stage/cost_estimate.h>
 
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -315,6 +317,12 @@ namespace cycloid
       solve_bulk_level(const double         load,
                        results::StageState &bulk,
                        SolveCost           &cost);
+      /** The bulk mesh's error of @p fine, solved for @p load on the mesh
+       * now: from solve_bulk_level(), or none (the console says why). */
+      std::optional<results::BulkError>
+      measure_bulk_error(const double               load,
+                         const results::StageState &fine,
+                         SolveCost                 &cost);
       /** Coarsen every cell of the finest level; returns the parents
        * (now active) of the cells coarsened. */
       std::set<dealii::CellId>
