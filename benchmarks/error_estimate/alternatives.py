@@ -101,8 +101,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--ranks", type=int, default=2)
     args = ap.parse_args()
-    cases = dict(validate.CASES_2D)
-    cases.update(validate.OTHER_2D)
+    cases = validate.cases_2d()
     rows = []
     for name, (body, _, _) in cases.items():
         rows += rows_of(name, body, args.ranks)

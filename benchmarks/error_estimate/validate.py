@@ -103,6 +103,12 @@ end
 """, [2, 3, 4], 5),
 }
 
+
+def cases_2d():
+    """Every 2D case: CASES_2D and OTHER_2D."""
+    return {**CASES_2D, **OTHER_2D}
+
+
 CASES_3D = {
     "3D one disc, c0.5 ax1, 500 N m": ("""
 subsection Scene
@@ -174,8 +180,7 @@ def ladder():
 def bulk_validation(ranks):
     """The estimate with the bulk mesh's part against Q2 (see above)."""
     import bulk  # noqa: E402 (imports this module)
-    cases = dict(CASES_2D)
-    cases.update(OTHER_2D)
+    cases = cases_2d()
     rows = []
     for name, (body, levels, _) in cases.items():
         rs, rp = bulk.variant(name, body, "Q2, Contact refinements 3", ranks)
@@ -218,8 +223,7 @@ def main():
         return ladder()
     if args.bulk:
         return bulk_validation(args.ranks)
-    cases = dict(CASES_2D)
-    cases.update(OTHER_2D)
+    cases = cases_2d()
     if args.three:
         cases.update(CASES_3D)
     rows = []
