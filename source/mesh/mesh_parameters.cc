@@ -119,9 +119,9 @@ namespace cycloid
           "extra solve has 2-3 times the DoFs of the first mesh in 2D (a "
           "2D run takes about a quarter longer) and about eight times its "
           "bulk DoFs in 3D. Needs Error estimate. Target accuracy's cycles "
-          "refine at the contacts and aim at the contact part; the bulk "
-          "part is added after them, and if the sum exceeds the target the "
-          "run says so and names the cure [-].");
+          "refine at the contacts, which leaves this part as it is: a "
+          "target below it is not reached, and the run names the cure "
+          "[-].");
         prm.declare_entry("Warning threshold",
                           "0.02",
                           Double(0, 1),

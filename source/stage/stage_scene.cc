@@ -939,6 +939,10 @@ namespace cycloid
       std::optional<results::BulkError> bulk;
       if (have_coarse && settings.mesh.error.bulk)
         bulk = measure_bulk_error(load, fine, cost);
+      // Refining at the contacts leaves the bulk mesh, and so its part, as
+      // it is: each contact level gets the part measured on the first.
+      if (bulk)
+        results::add_bulk_error(*bulk, fine);
       for (unsigned int cycle = 0; refine_again(cycle, have_coarse, fine);
            ++cycle)
         {
@@ -952,12 +956,9 @@ namespace cycloid
                                         levels[1],
                                         fine,
                                         contact_level());
+          if (bulk)
+            results::add_bulk_error(*bulk, fine);
         }
-      // The target's cycles refine at the contacts, so they aim at the
-      // contact levels' estimate; the bulk part, which they cannot reduce,
-      // joins it for the state reported.
-      if (bulk)
-        results::add_bulk_error(*bulk, fine);
       if (!coarse_failure.empty() && !fine.error.available())
         fine.error.failure = coarse_failure;
       report_accuracy(fine);
