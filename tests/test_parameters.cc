@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -422,6 +423,53 @@ TEST(Parameters, TargetAccuracyAutoFollowsTheRun)
        {"analytic", "mesh", "transient", "reduced", "profile"})
     EXPECT_EQ(parsed("set Run = " + mode).mesh.error.target_accuracy, 0.)
       << mode;
+}
+
+
+
+TEST(Parameters, BulkErrorAutoFollowsTheDimension)
+{
+  const auto mesh = [](const std::string &entries) {
+    return "subsection Mesh\n" + entries + "\nend\n";
+  };
+  const std::string three_d = "subsection Scene\nset Dimension = 3\nend\n";
+  // 2D runs that estimate (and Run = mesh, whose cost line includes it):
+  // on, without a note.
+  for (const std::string mode : {"quasi-static", "phase-sweep", "mesh"})
+    {
+      const auto p = parsed("set Run = " + mode);
+      EXPECT_TRUE(p.mesh.error.bulk) << mode;
+      for (const std::string &note : p.notes)
+        EXPECT_EQ(note.find("Bulk error estimate"), std::string::npos) << note;
+    }
+  // No estimate, no bulk part: 2D with the estimate off, transient runs.
+  EXPECT_FALSE(
+    parsed("set Run = quasi-static\n" + mesh("set Error estimate = false"))
+      .mesh.error.bulk);
+  EXPECT_FALSE(parsed("set Run = transient").mesh.error.bulk);
+  // 3D with a target (so with the estimate): off, and the note says that
+  // the estimates leave the bulk out; true turns it on.
+  const auto fe_3d = parsed("set Run = quasi-static\n" + three_d +
+                            mesh("set Target accuracy = 0.01"));
+  EXPECT_EQ(fe_3d.mesh.error.mode, mesh::ErrorControl::Mode::on);
+  EXPECT_FALSE(fe_3d.mesh.error.bulk);
+  EXPECT_EQ(std::count_if(fe_3d.notes.begin(),
+                          fe_3d.notes.end(),
+                          [](const std::string &note) {
+                            return note.rfind(
+                                     "Mesh/Bulk error estimate = auto: off "
+                                     "in 3D",
+                                     0) == 0;
+                          }),
+            1);
+  EXPECT_TRUE(parsed("set Run = quasi-static\n" + three_d +
+                     mesh("set Target accuracy = 0.01\nset Bulk error "
+                          "estimate = true"))
+                .mesh.error.bulk);
+  // false stays false in 2D.
+  EXPECT_FALSE(
+    parsed("set Run = quasi-static\n" + mesh("set Bulk error estimate = false"))
+      .mesh.error.bulk);
 }
 
 

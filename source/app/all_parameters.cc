@@ -97,9 +97,11 @@ namespace cycloid
               "resolution, nodes across the Hertz width of the most loaded "
               "pin (stiffness.csv hertz_nodes, resolution_error)");
           e.mode = mesh::ErrorControl::Mode::off;
+          e.bulk = false;
           return;
         }
-      e.mode                    = mesh::ErrorControl::Mode::on;
+      e.mode = mesh::ErrorControl::Mode::on;
+      resolve_bulk_error(solves);
       const unsigned int needed = mesh::ErrorControl::coarser_levels;
       if (mesh.contact_refinements >= needed)
         return;
@@ -111,6 +113,23 @@ namespace cycloid
         " (the estimate solves each state also with its finest contact "
         "level coarsened once and twice; Error estimate = false keeps " +
         std::to_string(asked) + ")");
+    }
+
+
+
+    void
+    AllParameters::resolve_bulk_error(const bool solves)
+    {
+      auto &e = mesh.error;
+      if (!e.automatic_bulk)
+        return;
+      e.bulk = scene.dimension == 2;
+      if (solves && !e.bulk)
+        notes.push_back(
+          "Mesh/Bulk error estimate = auto: off in 3D, so the error "
+          "estimates leave out the bulk mesh's error (the cells below the "
+          "two finest levels; its extra solve has several times the "
+          "state's DoFs in 3D; Bulk error estimate = true adds it)");
     }
 
 

@@ -46,13 +46,17 @@ namespace cycloid
                                        dim);
         dealii::DoFHandler<dim>     dofs(tria);
         dofs.distribute_dofs(fe);
-        const auto estimate =
-          stage::estimate_cost({dim,
-                                settings.scene.n_discs,
-                                dofs.n_dofs(),
-                                settings.mesh.degree,
-                                settings.mesh.adaptive_cycles,
-                                dealii::Utilities::MPI::n_mpi_processes(comm)});
+        stage::CostInputs in{dim,
+                             settings.scene.n_discs,
+                             dofs.n_dofs(),
+                             settings.mesh.degree,
+                             settings.mesh.adaptive_cycles,
+                             dealii::Utilities::MPI::n_mpi_processes(comm)};
+        // The estimate and its bulk level as the FE run would resolve
+        // them (AllParameters resolves both for Run = mesh too).
+        in.error_estimate      = settings.mesh.error.estimates(dim);
+        in.bulk_estimate       = in.error_estimate && settings.mesh.error.bulk;
+        const auto   estimate  = stage::estimate_cost(in);
         const double available = stage::available_memory_bytes(comm);
         // A mesh run allocates no matrix: it warns where an FE run stops.
         return "  FE run on this mesh: " + estimate.line() +

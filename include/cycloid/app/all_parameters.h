@@ -101,6 +101,12 @@ namespace cycloid
       void
       resolve_target_accuracy(bool solves);
 
+      /** Resolve `Mesh/Bulk error estimate = auto` once the estimate is
+       * on: on in 2D, off in 3D (with a note if the run @p solves FE
+       * states). */
+      void
+      resolve_bulk_error(bool solves);
+
       /**
        * Declare, read @p filename (with a clear error if it does not exist
        * or does not parse: a misspelled name gets the closest declared

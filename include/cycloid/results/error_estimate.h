@@ -30,13 +30,16 @@ namespace cycloid
                        const unsigned int level);
 
     /**
-     * @brief The error of the bulk mesh (the cells no contact refinement
-     * reaches) in one load state: bulk_change_factor times the change
-     * that one refinement of those cells makes.
+     * @brief The error of the bulk mesh (every cell that the contact
+     * levels' estimate leaves as it is: all but the two finest levels) in
+     * one load state: bulk_change_factor times the change that one
+     * refinement of those cells makes.
      *
-     * Measured once per state, on its first mesh, and added to the
-     * estimate of each contact level solved after it: refining at the
-     * contacts leaves the bulk mesh, and so this part, as it is.
+     * Measured on the state's first mesh and added to the estimate of
+     * each contact level that Target accuracy solves after it (refining
+     * at the contacts leaves most of the bulk as it is); after such
+     * cycles measured again on the last mesh, whose graded halo around
+     * the contacts is new.
      */
     struct BulkError
     {
@@ -49,7 +52,7 @@ namespace cycloid
     };
 
     /** The bulk error of @p state from @p bulk, the same load state solved
-     * with every cell that no contact refinement reached refined once. */
+     * with every bulk cell refined once. */
     BulkError
     bulk_error(const StageState &bulk, const StageState &state);
 

@@ -24,6 +24,9 @@ namespace cycloid
       unsigned int n_ranks         = 1; ///< MPI ranks.
       /** Mesh/Error estimate: a coarser level is solved too. */
       bool error_estimate = false;
+      /** Mesh/Bulk error estimate: the state is solved once more with
+       * its bulk cells refined (more DoFs than the state's mesh). */
+      bool bulk_estimate = false;
       /** CG with the plain-aggregation W-cycle (Solver/AMG hierarchy,
        * the 3D default): the fits' smoothed hierarchy's memory per DoF
        * times plain_amg_memory. */
@@ -73,6 +76,9 @@ namespace cycloid
      * measured memory for Q2). The error
      * estimate's coarser levels add half a state (measured in 2D: 8 to
      * 46 %, the finest solve starting from the coarser active set).
+     * The bulk level of the estimate has 3.7 times the DoFs (the peak
+     * memory then is its) and doubles a 2D state's time; in 3D it is
+     * costed as one more state on its DoFs.
      */
     struct CostEstimate
     {

@@ -306,10 +306,11 @@ namespace cycloid
       solve_coarser_levels(const double                      load,
                            std::vector<results::StageState> &coarser,
                            SolveCost                        &cost);
-      /** The bulk level: refine once every cell that no contact
-       * refinement reached (the cells of the mesh's global refinement
-       * level), solve @p load there warm-started from the mesh's active
-       * set, and coarsen back to the mesh asked for. The state on the
+      /** The bulk level: refine once every cell that the contact levels
+       * leave as they are (below the two finest levels: the global
+       * refinement level and the graded halo around the contacts), solve
+       * @p load there warm-started from the mesh's active set, and
+       * coarsen back to the mesh asked for. The state on the
        * refined bulk, or false (nothing changed) if the refinement would
        * not fit into the memory available or the solve failed
        * (coarse_failure says why). */
@@ -323,6 +324,14 @@ namespace cycloid
       measure_bulk_error(const double               load,
                          const results::StageState &fine,
                          SolveCost                 &cost);
+      /** After Target accuracy's cycles: measure the bulk part again on
+       * the mesh @p fine was solved on, and give @p fine its contact
+       * levels' estimate (from the two coarser @p levels) plus that part. */
+      void
+      remeasure_bulk_error(const double                            load,
+                           const std::vector<results::StageState> &levels,
+                           results::StageState                    &fine,
+                           SolveCost                              &cost);
       /** Coarsen every cell of the finest level; returns the parents
        * (now active) of the cells coarsened. */
       std::set<dealii::CellId>
