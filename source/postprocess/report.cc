@@ -332,8 +332,8 @@ namespace cycloid
 
 
     const char *const Report::bulk_advice =
-      "Mesh/Global refinements, or smaller Flank, Pin and Coarse element "
-      "sizes, reduce it.";
+      "Mesh/Global refinements, or a smaller Size grading and Flank, Pin "
+      "and Coarse element sizes, reduce it.";
 
 
 

@@ -77,7 +77,7 @@ namespace cycloid
      * estimate's coarser levels add half a state (measured in 2D: 8 to
      * 46 %, the finest solve starting from the coarser active set).
      * The bulk level of the estimate has 3.7 times the DoFs (the peak
-     * memory then is its) and doubles a 2D state's time; in 3D it is
+     * memory then is its) and multiplies a 2D state's time by 1.5; in 3D it is
      * costed as one more state on its DoFs.
      */
     struct CostEstimate
