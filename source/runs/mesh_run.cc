@@ -55,7 +55,7 @@ namespace cycloid
         // The estimate and its bulk level as the FE run would resolve
         // them (AllParameters resolves both for Run = mesh too).
         in.error_estimate      = settings.mesh.error.estimates(dim);
-        in.bulk_estimate       = in.error_estimate && settings.mesh.error.bulk;
+        in.bulk_estimate       = settings.mesh.error.bulk_level(dim);
         const auto   estimate  = stage::estimate_cost(in);
         const double available = stage::available_memory_bytes(comm);
         // A mesh run allocates no matrix: it warns where an FE run stops.

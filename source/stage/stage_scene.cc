@@ -394,7 +394,7 @@ namespace cycloid
       CostInputs  in      = cost_inputs(contact->elasticity().n_dofs());
       in.adaptive_cycles  = m.adaptive_cycles;
       in.error_estimate   = m.error.estimates(dim);
-      in.bulk_estimate    = in.error_estimate && m.error.bulk;
+      in.bulk_estimate    = m.error.bulk_level(dim);
       const auto estimate = estimate_cost(in);
       pcout << "  " << estimate.line();
       if (m.error.target_accuracy > 0)

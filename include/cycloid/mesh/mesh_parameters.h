@@ -76,6 +76,14 @@ namespace cycloid
         return mode == Mode::on ||
                (mode == Mode::automatic && (dim == 2 || target_accuracy > 0));
       }
+
+      /** Whether FE states of a @p dim-dimensional scene also solve the
+       * bulk level (resolved: AllParameters sets bulk for auto). */
+      bool
+      bulk_level(const unsigned int dim) const
+      {
+        return estimates(dim) && bulk;
+      }
     };
 
     /**
