@@ -21,13 +21,13 @@ namespace cycloid
 
 
 
-    postprocess::EnergyRow
+    results::EnergyState
     EnergyAccount::account(const StepReport  &report,
                            const double       J,
                            const unsigned int step,
                            const double       time)
     {
-      postprocess::EnergyRow e;
+      results::EnergyState e;
       e.step         = step;
       e.time_s       = time;
       e.kinetic      = report.kinetic * J;
@@ -50,7 +50,7 @@ namespace cycloid
 
 
     void
-    EnergyAccount::check(const postprocess::EnergyRow &e,
+    EnergyAccount::check(const results::EnergyState &e,
                          const std::string            &label,
                          dealii::ConditionalOStream   &out)
     {

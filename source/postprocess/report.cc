@@ -92,18 +92,6 @@ namespace cycloid
 
 
 
-    double
-    peak_memory_MB(const MPI_Comm comm)
-    {
-      dealii::Utilities::System::MemoryStats stats;
-      dealii::Utilities::System::get_memory_stats(stats);
-      return dealii::Utilities::MPI::sum(static_cast<double>(stats.VmHWM),
-                                         comm) /
-             1024.;
-    }
-
-
-
     Statistics::Statistics(const std::vector<double> &values)
     {
       const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
@@ -259,7 +247,7 @@ namespace cycloid
 
 
     void
-    Report::write(const EnergyRow &e, const results::StageState &s)
+    Report::write(const results::EnergyState &e, const results::StageState &s)
     {
       if (!active)
         return;
@@ -331,12 +319,6 @@ namespace cycloid
 
 
 
-    const char *const Report::bulk_advice =
-      "Mesh/Global refinements, or a smaller Size grading and Flank, Pin "
-      "and Coarse element sizes, reduce it.";
-
-
-
     void
     Report::print_estimate(const results::StageState &s) const
     {
@@ -367,7 +349,7 @@ namespace cycloid
       std::cout << ". " << options.refine_advice << std::endl;
       if (s.error.bulk > 0.5 * options.warning_threshold)
         std::cout << "    The bulk mesh's part (" << pct(s.error.bulk)
-                  << ") is not reduced by contact refinements: " << bulk_advice
+                  << ") is not reduced by contact refinements: " << results::bulk_advice
                   << std::endl;
     }
 

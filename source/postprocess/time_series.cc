@@ -45,7 +45,7 @@ namespace cycloid
 
 
     void
-    TimeSeries::add(const results::StageState &s, const EnergyRow &e)
+    TimeSeries::add(const results::StageState &s, const results::EnergyState &e)
     {
       time.push_back(e.time_s);
       crank_deg.push_back(s.crank * results::units::deg_per_rad);

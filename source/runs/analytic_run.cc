@@ -4,6 +4,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <cycloid/postprocess/report.h>
+#include <cycloid/results/cost_figures.h>
 #include <cycloid/runs/analytic_run.h>
 
 #include <algorithm>
@@ -18,17 +19,7 @@ namespace cycloid
   {
     namespace u = results::units;
 
-    namespace
-    {
-      /** Seconds since @p start. */
-      double
-      seconds_since(const std::chrono::steady_clock::time_point start)
-      {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                             start)
-          .count();
-      }
-    } // namespace
+    using results::seconds_since;
 
 
 
@@ -127,9 +118,8 @@ namespace cycloid
               state.wall_s              = seconds_since(start) + geometry_s;
               geometry_s                = 0;
               total_s += state.wall_s;
-              dealii::Utilities::System::MemoryStats stats;
-              dealii::Utilities::System::get_memory_stats(stats);
-              state.peak_memory_MB = stats.VmHWM / 1024.; // rank 0 only
+              // Only rank 0 computes (the others wait at the end).
+              state.peak_memory_MB = results::peak_memory_MB(MPI_COMM_SELF);
               report.write(state, torques[t]);
               if (show_state(
                     step / torques.size(), angles.size(), t, torques.size()))

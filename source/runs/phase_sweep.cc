@@ -3,6 +3,7 @@
 
 #include <cycloid/postprocess/report.h>
 #include <cycloid/postprocess/solution_record.h>
+#include <cycloid/results/cost_figures.h>
 #include <cycloid/runs/phase_sweep.h>
 
 #include <chrono>
@@ -20,13 +21,8 @@ namespace cycloid
     namespace
     {
       namespace u = results::units;
-      using Clock = std::chrono::steady_clock;
-
-      double
-      seconds_since(const Clock::time_point start)
-      {
-        return std::chrono::duration<double>(Clock::now() - start).count();
-      }
+      using results::Clock;
+      using results::seconds_since;
 
       /** The settings of this rank's group: the scenes outside world rank
        * 0's group print nothing (their group roots would interleave their
@@ -286,7 +282,11 @@ namespace cycloid
               state.step = k * loads.size() + t;
               // The files first: the record lists only files that exist.
               if (s.write_solution && !cycle_zero(s.loading, loads, t))
-                scene->output_results(state.step, pieces);
+                {
+                  const std::string name = postprocess::SolutionRecord::name(state.step);
+                  scene->output_results(name);
+                  pieces.add(state.step, name + ".pvtu");
+                }
               finest = std::max(finest, scene->contact_level());
               collector.submit(state);
               if (writer)

@@ -135,7 +135,11 @@ namespace cycloid
                          std::to_string(loads.size()) + ": ");
           // (A zero-torque limit has no field of its own.)
           if (settings.write_solution && !limit)
-            scene.output_results(step, record);
+            {
+              const std::string name = postprocess::SolutionRecord::name(step);
+              scene.output_results(name);
+              record.add(step, name + ".pvtu");
+            }
         }
       report.finish();
       scene.print_timing();

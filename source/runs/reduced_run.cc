@@ -4,6 +4,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <cycloid/postprocess/report.h>
+#include <cycloid/results/cost_figures.h>
 #include <cycloid/runs/analytic_run.h>
 #include <cycloid/runs/reduced_run.h>
 #include <cycloid/stage/stage_scene.h>
@@ -22,14 +23,8 @@ namespace cycloid
 
     namespace
     {
-      using Clock = std::chrono::steady_clock;
-
-      /** Seconds since @p start. */
-      double
-      seconds_since(const Clock::time_point start)
-      {
-        return std::chrono::duration<double>(Clock::now() - start).count();
-      }
+      using results::Clock;
+      using results::seconds_since;
     } // namespace
 
 
@@ -169,10 +164,7 @@ namespace cycloid
               state.step                = step;
               state.wall_s              = seconds_since(start_state) + setup_s;
               setup_s                   = 0;
-              dealii::Utilities::System::MemoryStats stats;
-              dealii::Utilities::System::get_memory_stats(stats);
-              state.peak_memory_MB =
-                dealii::Utilities::MPI::sum(stats.VmHWM / 1024., comm);
+              state.peak_memory_MB = results::peak_memory_MB(comm);
               report.write(state, torques[t]);
               if (root && show_state(k, angles.size(), t, torques.size()))
                 report.print(state,

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cycloid/results/cost_figures.h>
 #include <cycloid/runs/transient.h>
 
 #include <chrono>
@@ -178,7 +179,7 @@ namespace cycloid
 
 
     template <int dim>
-    std::pair<results::StageState, postprocess::EnergyRow>
+    std::pair<results::StageState, results::EnergyState>
     TransientRun<dim>::advance(const unsigned int step)
     {
       const auto   step_start = std::chrono::steady_clock::now();
@@ -201,7 +202,7 @@ namespace cycloid
       s.k_tangent           = std::numeric_limits<double>::quiet_NaN();
       s.iterations          = report.iterations;
       s.linear_iterations   = report.state.linear_iterations;
-      s.peak_memory_MB      = postprocess::peak_memory_MB(comm);
+      s.peak_memory_MB      = results::peak_memory_MB(comm);
       s.wall_s              = std::chrono::duration<double>(
                    std::chrono::steady_clock::now() - step_start)
                    .count();
@@ -218,7 +219,7 @@ namespace cycloid
     TransientRun<dim>::print_progress(const unsigned int            step,
                                       const unsigned int            first,
                                       const results::StageState    &s,
-                                      const postprocess::EnergyRow &e,
+                                      const results::EnergyState &e,
                                       const double elapsed) const
     {
       const double remaining =
@@ -274,7 +275,11 @@ namespace cycloid
                   << std::endl;
           series.add(state, e);
           if (time.output_due(step))
-            scene.output_results(step, record);
+            {
+              const std::string name = postprocess::SolutionRecord::name(step);
+              scene.output_results(name);
+              record.add(step, name + ".pvtu");
+            }
           if (time.checkpoint_due(step))
             {
               write_checkpoint(step, report);

@@ -4,7 +4,7 @@
 #include <deal.II/base/conditional_ostream.h>
 
 #include <cycloid/dynamics/contact_dynamics.h>
-#include <cycloid/postprocess/report.h>
+#include <cycloid/results/energy_state.h>
 
 #include <iosfwd>
 #include <string>
@@ -35,7 +35,7 @@ namespace cycloid
        * totals @p report (N mm, per unit thickness in 2D) scaled by @p to_J
        * to J for the whole stage; updates the energy scale.
        */
-      postprocess::EnergyRow
+      results::EnergyState
       account(const StepReport  &report,
               const double       to_J,
               const unsigned int step,
@@ -44,7 +44,7 @@ namespace cycloid
       /** Warn (once, on @p out) above 5 %, throw naming @p label above the
        * limit. */
       void
-      check(const postprocess::EnergyRow &row,
+      check(const results::EnergyState &row,
             const std::string            &label,
             dealii::ConditionalOStream   &out);
 

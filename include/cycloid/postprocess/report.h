@@ -3,6 +3,7 @@
 
 #include <cycloid/postprocess/catalogue.h>
 #include <cycloid/postprocess/sweep_noise.h>
+#include <cycloid/results/energy_state.h>
 #include <cycloid/results/stage_state.h>
 
 #include <cstdint>
@@ -18,35 +19,6 @@ namespace cycloid
 {
   namespace postprocess
   {
-    /**
-     * @brief One row of `energy.csv` (transient runs): energies and works
-     * for the whole tooth width [J], accumulated from t = 0.
-     */
-    struct EnergyRow
-    {
-      unsigned int step         = 0; ///< Time step index.
-      double       time_s       = 0; ///< Time at the end of the step [s].
-      double       kinetic      = 0; ///< Kinetic energy [J].
-      double       elastic      = 0; ///< Elastic energy [J].
-      double       external     = 0; ///< load surface + moving obstacles
-      double       bore_work    = 0; ///< Work of the load surface [J].
-      double       contact_work = 0; ///< Work of the moving obstacles [J].
-      double       dissipated   = 0; ///< Rayleigh damping dissipation [J].
-      /** E_kin + E_el + D - W - E_0 [J]. */
-      double balance = 0;
-      /** balance over the largest energy level reached [-]. */
-      double relative_balance = 0;
-      /** Largest penetration of a contact node [um]. */
-      double max_penetration_um = 0;
-      /** Angular momentum of the discs about their centres [N m s]. */
-      double angular_momentum = 0;
-    };
-
-    /** Peak resident memory (VmHWM) summed over the ranks of @p comm [MB]
-     * (collective). */
-    double
-    peak_memory_MB(const MPI_Comm comm);
-
     /** Mean, minimum, maximum and (max - min) / mean of a series. */
     struct Statistics
     {
@@ -145,7 +117,7 @@ namespace cycloid
 
       /** Append @p row to energy.csv. */
       void
-      write(const EnergyRow &row, const results::StageState &state);
+      write(const results::EnergyState &row, const results::StageState &state);
 
       /** Print the one-line summary of @p state after @p prefix. */
       void
@@ -188,10 +160,6 @@ namespace cycloid
       /** Header line of rigidity.csv. */
       static std::string
       rigidity_header();
-
-      /** The cure of an estimate whose bulk mesh's part is too large
-       * (Mesh/Bulk error estimate): contact refinements do not reduce it. */
-      static const char *const bulk_advice;
 
     private:
       /** The stiffness and rotation of one load over the crank angles, in

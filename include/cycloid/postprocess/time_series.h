@@ -40,7 +40,7 @@ namespace cycloid
 
       /** Append the step of @p state with its energy row @p energy. */
       void
-      add(const results::StageState &state, const EnergyRow &energy);
+      add(const results::StageState &state, const results::EnergyState &energy);
 
       /** Write @p directory/transient.h5 on rank 0 of @p comm (through a
        * temporary file, so a reader never sees half a file). */

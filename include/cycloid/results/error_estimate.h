@@ -108,6 +108,12 @@ namespace cycloid
      */
     std::vector<std::string>
     unresolved_pins(const StageState &state, const double threshold);
+
+    /** The cure of an estimate whose bulk mesh's part is too large
+     * (Mesh/Bulk error estimate): contact refinements do not reduce it. */
+    inline constexpr const char *bulk_advice =
+      "Mesh/Global refinements, or a smaller Size grading and Flank, Pin "
+      "and Coarse element sizes, reduce it.";
   } // namespace results
 } // namespace cycloid
 

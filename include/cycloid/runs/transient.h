@@ -72,7 +72,7 @@ namespace cycloid
       start(std::vector<std::uintmax_t> &sizes);
 
       /** Solve step @p step: its state and energy row. */
-      std::pair<results::StageState, postprocess::EnergyRow>
+      std::pair<results::StageState, results::EnergyState>
       advance(const unsigned int step);
 
       /** Write the checkpoint of step @p step. */
@@ -90,7 +90,7 @@ namespace cycloid
       print_progress(const unsigned int            step,
                      const unsigned int            first,
                      const results::StageState    &state,
-                     const postprocess::EnergyRow &energy,
+                     const results::EnergyState &energy,
                      const double                  elapsed) const;
 
       const Settings                                  settings;

@@ -17,10 +17,9 @@
 #include <cycloid/mesh/stage_mesh.h>
 #include <cycloid/parameters/material.h>
 #include <cycloid/parameters/scene.h>
-#include <cycloid/postprocess/solution_record.h>
-#include <cycloid/results/error_estimate.h>
 #include <cycloid/results/stage_state.h>
 #include <cycloid/stage/cost_estimate.h>
+#include <cycloid/stage/state_builder.h>
 
 #include <memory>
 #include <optional>
@@ -197,11 +196,11 @@ namespace cycloid
       void
       warm_start(const ActiveSetSnapshot<dim> &snapshot);
 
-      /** Write the last state as solution-NNNN.pvtu for state @p step and
-       * add it to @p record, which is rewritten as solution.pvd. */
+      /** Write the last state's fields as @p name.pvtu (and its pieces)
+       * into the output directory; the run adds it to its record
+       * (postprocess::SolutionRecord), which the scene does not know. */
       void
-      output_results(const unsigned int           step,
-                     postprocess::SolutionRecord &record);
+      output_results(const std::string &name);
 
       /** The contact problem, for a time scheme that steps it. */
       contact::ContactProblem<dim> &
@@ -259,6 +258,36 @@ namespace cycloid
       unsigned int
       contact_level() const;
 
+      /** @name The mesh levels, for the error control (ErrorControlLoop)
+       * @{ */
+
+      /** The mesh, which the error control coarsens and refines; rebuild()
+       * after every change. */
+      dealii::parallel::TriangulationBase<dim> &
+      triangulation()
+      {
+        return *tria;
+      }
+
+      /** Solve for @p load (as solve() takes it) on the current mesh, from
+       * the current active set, and return the stage's state: one level
+       * of the error control, without its estimate and cost totals. */
+      results::StageState
+      solve_level(const double load);
+
+      /** After the triangulation changed: DoFs, contact nodes, load,
+       * rotation field, and the active set carried over from
+       * @p snapshot. */
+      void
+      rebuild(const ActiveSetSnapshot<dim> &snapshot);
+
+      /** The memory a state of this scene at @p n_dofs DoFs needs, by the
+       * cost model [bytes] (one state, no cycle, no estimate). */
+      double
+      memory_needed(const dealii::types::global_dof_index n_dofs) const;
+
+      /** @} */
+
     private:
       void
       make_grid(const mesh::MeshRequest &request);
@@ -280,100 +309,9 @@ namespace cycloid
       announce_cost() const;
       contact::ContactState
       solve_state(const double load);
-      /** What the solves of one state cost, over its levels. */
-      struct SolveCost
-      {
-        unsigned int  iterations = 0; ///< Active-set iterations.
-        unsigned long linear     = 0; ///< Linear-solver iterations.
-        unsigned int  setups     = 0; ///< Preconditioner set-ups.
-        /** Add the cost of @p result. */
-        void
-        add(const contact::ContactState &result);
-      };
-      /** Solve for @p load on the current mesh, add the cost to @p cost,
-       * and return the stage's state. */
-      results::StageState
-      solve_level(const double load, SolveCost &cost);
-      /** The error estimate's coarser levels: coarsen the mesh's finest
-       * contact level mesh::ErrorControl::coarser_levels times, solve
-       * @p load on each level from the coarsest up (into @p coarser,
-       * coarsest first), each warm-started from the one below, and refine
-       * back to the mesh asked for (the active set the finest coarser
-       * solution's). False if the mesh has too few contact levels above
-       * its global refinements (nothing done) or if a coarser solve failed
-       * (coarse_failure says why; the mesh and warm start are restored). */
-      bool
-      solve_coarser_levels(const double                      load,
-                           std::vector<results::StageState> &coarser,
-                           SolveCost                        &cost);
-      /** The bulk level: refine once every cell that the contact levels
-       * leave as they are (below the two finest levels: the global
-       * refinement level and the graded halo around the contacts), solve
-       * @p load there warm-started from the mesh's active set, and
-       * coarsen back to the mesh asked for. The state on the
-       * refined bulk, or false (nothing changed) if the refinement would
-       * not fit into the memory available or the solve failed
-       * (coarse_failure says why). */
-      bool
-      solve_bulk_level(const double         load,
-                       results::StageState &bulk,
-                       SolveCost           &cost);
-      /** The bulk mesh's error of @p fine, solved for @p load on the mesh
-       * now: from solve_bulk_level(), or none (the console says why). */
-      std::optional<results::BulkError>
-      measure_bulk_error(const double               load,
-                         const results::StageState &fine,
-                         SolveCost                 &cost);
-      /** After Target accuracy's cycles: measure the bulk part again on
-       * the mesh @p fine was solved on, and give @p fine its contact
-       * levels' estimate (from the two coarser @p levels) plus that part. */
-      void
-      remeasure_bulk_error(const double                            load,
-                           const std::vector<results::StageState> &levels,
-                           results::StageState                    &fine,
-                           SolveCost                              &cost);
-      /** Coarsen every cell of the finest level; returns the parents
-       * (now active) of the cells coarsened. */
-      std::set<dealii::CellId>
-      coarsen_finest_level();
-      /** Refine the active cells @p cells once. */
-      void
-      refine_cells(const std::set<dealii::CellId> &cells);
-      /** Whether solve() refines and solves again after cycle @p cycle:
-       * the adaptive cycles, or the target accuracy not met by @p fine
-       * (which has an estimate if @p have_coarse). */
-      bool
-      refine_again(const unsigned int         cycle,
-                   const bool                 have_coarse,
-                   const results::StageState &fine) const;
-      /** Refine next to the active nodes (up to level_cap()); false if no
-       * cell was refined, or if the refined mesh would not fit into the
-       * memory available (refinement_fits()). */
-      bool
-      refine_at_contacts();
-      /** Whether the mesh with the refine flags now set fits into the
-       * memory available, by the cost model, its DoFs taken in proportion
-       * to the active cells; if not, says so on the console and records
-       * it in memory_stop, naming the refinement as @p what. The flags
-       * must be prepared
-       * (prepare_coarsening_and_refinement()). Why: in 3D one refinement
-       * at every active node multiplied the seed case's DoFs by five
-       * (1.5 M to 7.5 M), and the run was killed for memory with its
-       * state lost. */
-      bool
-      refinement_fits(
-        const std::string &what = "the next refinement at the contacts");
-      /** Print whether @p s met `Mesh/Target accuracy` (if set). */
-      void
-      report_accuracy(const results::StageState &s) const;
-      /** The finest level refine_at_contacts() may reach. */
-      unsigned int
-      level_cap() const;
-      /** After the triangulation changed: DoFs, contact nodes, load,
-       * rotation field, and the active set carried over from
-       * @p snapshot. */
-      void
-      rebuild(const ActiveSetSnapshot<dim> &snapshot);
+      /** The pin-state extraction at the discs' current placement. */
+      StateBuilder<dim>
+      state_builder() const;
       void
       compute_rotation_field();
       /** First state: the nodes that the analytical model's rotation for
@@ -396,42 +334,6 @@ namespace cycloid
        * active set from the analytical state @p analytical. */
       std::vector<FirstSetReach>
       first_set_reach(const results::StageState &analytical) const;
-      /** Per disc and pin: force sums in the housing frame and moment. */
-      void
-      sum_pin_forces(std::vector<results::PinState> &pins) const;
-      /** The rigid take-up rotation towards the side @p sign of the
-       * exact geometry at the current crank angle [rad] (unsigned). */
-      double
-      takeup_rotation(const int sign) const;
-      /** Per pin of @p s: arm (of unloaded pins), clearance, phase, contact
-       * point, approach, contact and Hertz widths, Hertz stresses; adds
-       * the pins' moments to the reaction torque. */
-      void
-      set_pin_geometry(results::StageState &s) const;
-      /** Per disc and pin: the largest nodal contact pressure [MPa]. */
-      void
-      set_peak_pressures(std::vector<results::PinState> &pins) const;
-      /** Half-width of the active contact of disc @p d on pin @p j [mm]. */
-      double
-      contact_halfwidth(const unsigned int      d,
-                        const unsigned int      j,
-                        const dealii::Point<2> &contact_point) const;
-      /** Angle about pin @p j's centre of each slave node of disc @p d
-       * that faces it, from the unloaded contact point @p contact_point
-       * (in [-pi, pi]), with the active set's flag; in 3D one entry per
-       * node, so an angle repeats once per axial node. */
-      std::vector<std::pair<double, bool>>
-      pair_node_angles(const unsigned int      d,
-                       const unsigned int      j,
-                       const dealii::Point<2> &contact_point) const;
-      /** Spacing of the slave nodes of disc @p d along the flank at its
-       * unloaded contact point with pin @p j: the smaller gap between the
-       * node nearest the point and its neighbours, as an arc on the pin
-       * [mm]; 0 if the pair has fewer than two nodes. */
-      double
-      flank_node_spacing(const unsigned int      d,
-                         const unsigned int      j,
-                         const dealii::Point<2> &contact_point) const;
 
       const StageSettings             settings;
       const MPI_Comm                  comm;
@@ -451,12 +353,6 @@ namespace cycloid
       bool                                                      warm = false;
       /** The load of the state the active set comes from. */
       double warm_load = 0;
-      /** Why the current state's coarser level failed (empty: it did
-       * not). */
-      std::string coarse_failure;
-      /** Why the current state stopped refining before its target (empty:
-       * it did not stop for memory). */
-      std::string memory_stop;
     };
   } // namespace stage
 } // namespace cycloid
