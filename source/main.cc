@@ -18,22 +18,20 @@ namespace
   void
   print_usage(std::ostream &out)
   {
-    out << "Usage: cycloid-contact [--help] [--print-parameters] [file.prm]\n"
+    out << "Usage: cycloid-contact [--help] [--print-parameters[=json]] "
+           "[file.prm]\n"
            "  file.prm            parameter file (deal.II ParameterHandler "
            "syntax)\n"
            "  --print-parameters  write every parameter with its default and "
            "documentation\n"
+           "  --print-parameters=json\n"
+           "                      the same as JSON, with each entry's pattern "
+           "(for scripts;\n"
+           "                      deal.II writes a name's blanks as _20)\n"
            "  --help              this text\n"
            "Run modes (set Run = ...):\n"
-           "  analytic      Hertz-based load distribution over the pins "
-           "(seed or line-contact pair model)\n"
-           "  profile       write the disc profile for CAD: profile.dxf, "
-           "profile.step, profile.csv\n"
-           "  mesh          write the FE mesh of the scene\n"
-           "  quasi-static  FE contact at one crank angle and torque(s)\n"
-           "  phase-sweep   FE contact over the meshing phases\n"
-           "  transient     elastodynamics with contact\n"
-           "Outputs go to 'Output directory': stiffness.csv, pin_forces.csv, "
+        << cycloid::parameters::RunParameters::mode_help()
+        << "Outputs go to 'Output directory': stiffness.csv, pin_forces.csv, "
            "parameters.prm (see README.md).\n";
   }
 
@@ -48,6 +46,7 @@ namespace
       run,
       help,
       print_parameters,
+      print_parameters_json,
       bad
     } action = Action::run;
     /** The parameter file (Action::run). */
@@ -69,6 +68,8 @@ namespace
           return {CommandLine::Action::help, "", ""};
         if (arg == "--print-parameters")
           return {CommandLine::Action::print_parameters, "", ""};
+        if (arg == "--print-parameters=json")
+          return {CommandLine::Action::print_parameters_json, "", ""};
         if (!arg.empty() && arg[0] == '-')
           return {CommandLine::Action::bad,
                   "",
@@ -98,13 +99,17 @@ namespace
           if (root)
             print_usage(std::cout);
           return 0;
-          case CommandLine::Action::print_parameters: {
+        case CommandLine::Action::print_parameters:
+          case CommandLine::Action::print_parameters_json: {
             dealii::ParameterHandler prm;
             cycloid::app::AllParameters::declare_parameters(prm);
+            const bool json =
+              command.action == CommandLine::Action::print_parameters_json;
             if (root)
               prm.print_parameters(
                 std::cout,
-                dealii::ParameterHandler::PRM |
+                (json ? dealii::ParameterHandler::JSON :
+                        dealii::ParameterHandler::PRM) |
                   dealii::ParameterHandler::KeepDeclarationOrder);
             return 0;
           }

@@ -328,24 +328,63 @@ namespace cycloid
 
 
 
+    const std::vector<RunParameters::ModeEntry> &
+    RunParameters::modes()
+    {
+      static const std::vector<ModeEntry> table = {
+        {Mode::analytic,
+         "analytic",
+         "Hertz-based load distribution over the pins, Analytic subsection"},
+        {Mode::reduced,
+         "reduced",
+         "the coarse FE compliance condensed onto the contacts with the "
+         "analytic line-contact law (near FE accuracy at a fraction of its "
+         "cost), Reduced subsection; driven like 'analytic' by the Torque "
+         "list and crank angles"},
+        {Mode::quasi_static,
+         "quasi-static",
+         "FE contact at Crank angle, for the torque(s)"},
+        {Mode::phase_sweep,
+         "phase-sweep",
+         "FE contact over Number of phases"},
+        {Mode::transient, "transient", "elastodynamics with contact"},
+        {Mode::mesh, "mesh", "write the FE mesh of the scene"},
+        {Mode::profile,
+         "profile",
+         "the modified profile of one disc as profile.csv, .dxf and .step "
+         "for CAD, at Profile/Chord tolerance"}};
+      return table;
+    }
+
+
+
+    std::string
+    RunParameters::mode_help()
+    {
+      std::string text;
+      for (const auto &m : modes())
+        {
+          std::string name = m.name;
+          name.resize(14, ' ');
+          text += "  " + name + m.summary + "\n";
+        }
+      return text;
+    }
+
+
+
     void
     RunParameters::declare_parameters(dealii::ParameterHandler &prm)
     {
       using namespace dealii::Patterns;
-      prm.declare_entry(
-        "Run",
-        "analytic",
-        Selection(
-          "analytic|mesh|quasi-static|phase-sweep|transient|reduced|profile"),
-        "Run mode: 'analytic' (Hertz-based load distribution, "
-        "Analytic subsection), 'mesh' (write the FE mesh), 'quasi-static' "
-        "(FE contact at Crank angle), 'phase-sweep' (FE over Number of "
-        "phases), 'transient' (elastodynamics with contact), 'reduced' "
-        "(the coarse FE compliance condensed onto the contacts with the "
-        "analytic line-contact law, Reduced subsection; driven like "
-        "'analytic' by the Torque list and crank angles), 'profile' "
-        "(the modified profile of one disc as profile.csv, .dxf and .step "
-        "for CAD, at Profile/Chord tolerance).");
+      std::string names, text = "Run mode: ";
+      for (const auto &m : modes())
+        {
+          names += (names.empty() ? "" : "|") + std::string(m.name);
+          text += std::string(m.mode == modes().front().mode ? "" : "; ") +
+                  "'" + m.name + "' (" + m.summary + ")";
+        }
+      prm.declare_entry("Run", "analytic", Selection(names), text + ".");
       prm.declare_entry("Output directory",
                         "output",
                         Anything(),
@@ -368,20 +407,10 @@ namespace cycloid
       write_solution   = prm.get_bool("Write solution");
       AssertThrow(!output_directory.empty(),
                   dealii::ExcMessage("Output directory must not be empty."));
-      if (mode_name == "analytic")
-        mode = Mode::analytic;
-      else if (mode_name == "mesh")
-        mode = Mode::mesh;
-      else if (mode_name == "quasi-static")
-        mode = Mode::quasi_static;
-      else if (mode_name == "phase-sweep")
-        mode = Mode::phase_sweep;
-      else if (mode_name == "reduced")
-        mode = Mode::reduced;
-      else if (mode_name == "profile")
-        mode = Mode::profile;
-      else
-        mode = Mode::transient;
+      // The Selection pattern admits only the table's names.
+      for (const auto &m : modes())
+        if (mode_name == m.name)
+          mode = m.mode;
     }
 
 

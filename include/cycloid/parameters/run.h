@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
+#include <vector>
 
 namespace cycloid
 {
@@ -25,6 +26,25 @@ namespace cycloid
         reduced,
         profile
       };
+
+      /** A run mode as the user sees it: its name in `Run` and one line
+       * on what it does. */
+      struct ModeEntry
+      {
+        Mode        mode;    ///< The mode.
+        const char *name;    ///< Its name in the parameter file.
+        const char *summary; ///< One line for `--help` and the prm text.
+      };
+
+      /** Every run mode, in the order `--help` lists them: the one table
+       * that the `Run` selection, its documentation, the parse and
+       * `--help` are made from (a mode added here is in all four). */
+      static const std::vector<ModeEntry> &
+      modes();
+
+      /** The run modes as `--help` prints them: one indented line each. */
+      static std::string
+      mode_help();
 
       /** Selected run mode. */
       Mode mode = Mode::analytic;
