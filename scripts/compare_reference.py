@@ -9,17 +9,18 @@ max_pin_force_N and source (which FE run gave them). Every state of
 OUTPUT_DIR/stiffness.csv at a reference's crank angle and torque gets one
 line with its relative differences; states without a reference are named.
 """
-import csv
 import os
 import sys
+
+from cycloid_tools import read_csv
 
 
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     out, ref_path = sys.argv[1], sys.argv[2]
-    states = list(csv.DictReader(open(os.path.join(out, "stiffness.csv"))))
-    refs = list(csv.DictReader(open(ref_path)))
+    states = read_csv(os.path.join(out, "stiffness.csv"))
+    refs = read_csv(ref_path)
     print("Distance from the full FE model (%s):" % os.path.relpath(ref_path))
     for s in states:
         match = [r for r in refs

@@ -31,7 +31,6 @@ the title, axis labels and the curves drawn (label, number of points), read
 back from the drawn figure, so that tests and scripts can check what was
 drawn without looking at pixels. It prints the paths of the PNGs written.
 """
-import csv
 import json
 import math
 import os
@@ -43,6 +42,8 @@ import matplotlib
 matplotlib.use("Agg")  # no display: files only
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+from cycloid_tools import read_csv, read_prm  # noqa: E402
 
 ARCSEC_PER_RAD = 180.0 * 3600.0 / math.pi
 ARCMIN_PER_RAD = 180.0 * 60.0 / math.pi
@@ -66,17 +67,13 @@ plt.rcParams.update({
 
 # --- reading ---------------------------------------------------------------
 
-def read_csv(path):
-    """Columns of a one-header-line CSV file as float arrays (nan kept)."""
-    if not os.path.isfile(path):
+def read_columns(path):
+    """Columns of a one-header-line CSV file as float arrays (nan kept);
+    None if the file is absent or has no row."""
+    rows = read_csv(path, numbers=(float,), missing_ok=True)
+    if not rows:
         return None
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    if len(rows) < 2:
-        return None
-    header = [h.strip() for h in rows[0]]
-    data = np.array([[float(v) for v in r] for r in rows[1:] if r], dtype=float)
-    return {name: data[:, i] for i, name in enumerate(header)}
+    return {name.strip(): np.array([r[name] for r in rows], dtype=float) for name in rows[0]}
 
 
 def _one_state_per_load(s):
@@ -88,23 +85,6 @@ def _one_state_per_load(s):
             seen.add((c, t))
             keep.append(i)
     return {name: column[keep] for name, column in s.items()}
-
-
-def read_prm(path):
-    """`set` entries of a ParameterHandler file as {"Sub/Sub/Name": value}."""
-    values, section = {}, []
-    if not os.path.isfile(path):
-        return values
-    for raw in open(path):
-        line = raw.split("#")[0].strip()
-        if line.startswith("subsection "):
-            section.append(line.split(None, 1)[1].strip())
-        elif line == "end" and section:
-            section.pop()
-        elif line.startswith("set ") and "=" in line:
-            key, value = line[4:].split("=", 1)
-            values["/".join(section + [key.strip()])] = value.strip()
-    return values
 
 
 def distinct(values, digits=9):
@@ -139,13 +119,14 @@ class Run:
 
     def __init__(self, directory):
         self.dir = directory
-        self.prm = read_prm(os.path.join(directory, "parameters.prm"))
-        self.stiffness = read_csv(os.path.join(directory, "stiffness.csv"))
-        self.pins = read_csv(os.path.join(directory, "pin_forces.csv"))
-        self.fluctuation = read_csv(os.path.join(directory, "fluctuation.csv"))
-        self.energy = read_csv(os.path.join(directory, "energy.csv"))
-        self.torsion = read_csv(os.path.join(directory, "torsion_curve.csv"))
-        self.rigidity = read_csv(os.path.join(directory, "rigidity.csv"))
+        prm = os.path.join(directory, "parameters.prm")
+        self.prm = read_prm(prm) if os.path.isfile(prm) else {}
+        self.stiffness = read_columns(os.path.join(directory, "stiffness.csv"))
+        self.pins = read_columns(os.path.join(directory, "pin_forces.csv"))
+        self.fluctuation = read_columns(os.path.join(directory, "fluctuation.csv"))
+        self.energy = read_columns(os.path.join(directory, "energy.csv"))
+        self.torsion = read_columns(os.path.join(directory, "torsion_curve.csv"))
+        self.rigidity = read_columns(os.path.join(directory, "rigidity.csv"))
         self.transient = self.energy is not None or self.prm.get("Run") == "transient"
         self.by_rotation = self._rotation_control()
         # A torque cycle passes each torque twice at a crank angle (loading

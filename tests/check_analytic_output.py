@@ -28,12 +28,15 @@ Usage: check_analytic_output.py FILE.prm OUTPUT_DIR
 import csv
 import math
 import sys
+from pathlib import Path
 
 import numpy as np
 
 from catalogue_figures import ARCMIN, ARCSEC, catalogue
-from cycloid_prm import read_prm
 from checker import check, rows as read_csv, verdict
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import prm_getter  # noqa: E402
 
 DEFAULTS = {
     ("Geometry", "Number of pins"): "40",
@@ -149,7 +152,7 @@ def check_fluctuation(outdir, stiffness):
 
 
 def main(prm_path, outdir):
-    get = read_prm(prm_path, DEFAULTS)
+    get = prm_getter(prm_path, DEFAULTS)
     zp = int(get("Geometry", "Number of pins"))
     zc = int(get("Geometry", "Number of cycloid teeth"))
     rrp = float(get("Geometry", "Pin radius"))

@@ -14,28 +14,24 @@ Usage: check_bar_impact.py BAR_IMPACT_EXECUTABLE [RANKS]
   period and the energy balance error exceeds 10 % of E0 (measured +600 %).
   If Newmark stopped chattering, the stability study would be wrong.
 """
-import csv
-import io
-import os
 import re
-import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 
 def run(exe, scheme, ranks):
-    cmd = [exe, scheme, "40", "1", "0.8"]
-    if ranks > 1:
-        cmd = ["mpirun", *(["--allow-run-as-root"] if os.getuid() == 0 else []), "--oversubscribe", "-np",
-               str(ranks)] + cmd
-    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+    out = run_cycloid(ranks if ranks > 1 else None, exe, scheme, "40", "1", "0.8", check=True,
+                      oversubscribe=True).stdout
     header = out.splitlines()[0]
     meta = dict(re.findall(r"(dt|2L/c|v0|E0) ([-0-9.e+]+)", header))
     dt = float(re.search(r"dt ([-0-9.e+]+)", header).group(1))
     tc = float(re.search(r"2L/c ([-0-9.e+]+)", header).group(1))
     force = float(re.search(r"v0 ([-0-9.e+]+) N/mm", header).group(1))
     e0 = float(re.search(r"E0 ([-0-9.e+]+)", header).group(1))
-    rows = list(csv.DictReader(io.StringIO("\n".join(out.splitlines()[1:]))))
-    return dt, tc, force, e0, [{k: float(v) for k, v in r.items()} for r in rows]
+    return dt, tc, force, e0, read_csv(out.splitlines()[1:], numbers=(float,))
 
 
 def main(exe, ranks):

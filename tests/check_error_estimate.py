@@ -51,11 +51,14 @@ FILE.prm is the new-user case of issue #15: the 2D slab, modified profile,
 import argparse
 import os
 import re
-import subprocess
 import sys
+from pathlib import Path
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checker import check, rows, verdict  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import run_cycloid  # noqa: E402
 
 BRACKET = 10.0
 RESOLUTION_CONSTANT = 0.25  # results::resolution_constant
@@ -68,18 +71,12 @@ def run(exe, text, work, name, mesh, env=None, ranks=2):
         f.write(text.replace("set Output directory = error-estimate",
                              "set Output directory = " + out))
         f.write("subsection Mesh\n" + "".join("  set %s = %s\n" % kv for kv in mesh.items()) + "end\n")
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    if ranks > (os.cpu_count() or 1):
-        flags.append("--oversubscribe")
-    with open(out + ".log", "w") as log:
-        rc = subprocess.call(["mpirun"] + flags + ["-np", str(ranks), exe, prm],
-                             stdout=log, stderr=subprocess.STDOUT,
-                             env=dict(os.environ, **(env or {})))
-    if rc != 0:
+    r = run_cycloid(ranks, exe, prm, log=out + ".log", env=env)
+    if r.returncode != 0:
         sys.exit("%s failed, see %s.log" % (name, out))
     s = rows(os.path.join(out, "stiffness.csv"))[0]
     pins = {(p["disc"], p["pin"]): float(p["Fn_N"]) for p in rows(os.path.join(out, "pin_forces.csv"))}
-    return s, pins, open(out + ".log").read()
+    return s, pins, r.stdout
 
 
 def errors(a, b):

@@ -10,8 +10,11 @@ Usage: check_help.py EXECUTABLE
 """
 import json
 import re
-import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import run_cycloid  # noqa: E402
 
 
 def demangle(name):
@@ -21,8 +24,7 @@ def demangle(name):
 
 def run_selection(exe):
     """The names the `Run` entry's Selection pattern admits."""
-    out = subprocess.run([exe, "--print-parameters=json"], check=True,
-                         capture_output=True, text=True).stdout
+    out = run_cycloid(None, exe, "--print-parameters=json", check=True).stdout
     tree = {demangle(k): v for k, v in json.loads(out).items()}
     pattern = tree["Run"]["pattern_description"]
     match = re.fullmatch(r"\[Selection (.*) \]", pattern.strip())
@@ -32,8 +34,7 @@ def run_selection(exe):
 
 def help_modes(exe):
     """The modes `--help` lists under "Run modes", first word of each line."""
-    out = subprocess.run([exe, "--help"], check=True, capture_output=True,
-                         text=True).stdout
+    out = run_cycloid(None, exe, "--help", check=True).stdout
     lines = out.splitlines()
     start = next(i for i, l in enumerate(lines) if l.startswith("Run modes"))
     modes = set()

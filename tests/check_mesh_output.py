@@ -15,12 +15,14 @@ Usage: check_mesh_output.py FILE.prm DIR_1_RANK DIR_2_RANKS [EXECUTABLE]
 """
 import math
 import sys
+from pathlib import Path
 
 import numpy as np
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
-from cycloid_prm import read_prm
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import prm_getter  # noqa: E402
 
 failures = []
 
@@ -59,7 +61,7 @@ def exact_disc_area():
 
 
 def main(prm, dir1, dir2, exe=None):
-    get = read_prm(prm)
+    get = prm_getter(prm)
     dim = int(get("Scene", "Dimension", "2"))
     discs = get("Scene", "Number of discs", "auto")
     n_discs = (1 if dim == 2 else 2) if discs == "auto" else int(discs)

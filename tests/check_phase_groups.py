@@ -21,12 +21,14 @@ groups of 2; then for each grouped run:
   each .pvtu and its pieces exist;
 * the console has one progress line per state and the groups' busy times.
 """
-import csv
 import math
 import os
 import re
-import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import read_csv as rows, run_cycloid  # noqa: E402
 
 TOL = 1e-7
 failures = []
@@ -35,11 +37,6 @@ failures = []
 def check(cond, msg):
     if not cond:
         failures.append(msg)
-
-
-def rows(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
 
 
 def header(path):
@@ -58,9 +55,7 @@ def run(exe, text, work, name, ranks, group):
     prm = re.sub(r"set Output directory *=.*", f"set Output directory = {name}", prm)
     with open(f"{work}/{name}.prm", "w") as f:
         f.write(prm)
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    out = subprocess.run(["mpirun", *flags, "--oversubscribe", "-np", str(ranks), exe, f"{name}.prm"],
-                         cwd=work, check=True, capture_output=True, text=True).stdout
+    out = run_cycloid(ranks, exe, f"{name}.prm", cwd=work, check=True, oversubscribe=True).stdout
     with open(f"{work}/{name}.log", "w") as f:
         f.write(out)
     return f"{work}/{name}", out

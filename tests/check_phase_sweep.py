@@ -15,13 +15,15 @@ Usage: check_phase_sweep.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
 * the same results on 1 and 2 ranks (1e-6).
 """
 import os
-import subprocess
 import sys
 import tempfile
+from pathlib import Path
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cycloid_prm import read_prm  # noqa: E402
-from checker import check, rows, verdict
+from checker import check, rows, verdict  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import prm_getter, run_cycloid  # noqa: E402
 
 
 def close(a, b, tol):
@@ -29,7 +31,7 @@ def close(a, b, tol):
 
 
 def main(prm, dir1, dir2, exe):
-    get = read_prm(prm)
+    get = prm_getter(prm)
     zp = int(get("Geometry", "Number of pins", 40))
     torques = [float(t) for t in get("Loading", "Torque").split(",")]
     n_phases = int(get("Loading", "Number of phases"))
@@ -79,7 +81,7 @@ def main(prm, dir1, dir2, exe):
         text = text.replace("set Crank angle = 0", f"set Crank angle = {middle!r}")
         with open(f"{tmp}/q.prm", "w") as f:
             f.write(text)
-        subprocess.run([exe, f"{tmp}/q.prm"], check=True, capture_output=True)
+        run_cycloid(None, exe, f"{tmp}/q.prm", check=True)
         q = rows(f"{tmp}/q/stiffness.csv")
     mid = [r for r in s2 if abs(float(r["crank_deg"]) - middle) < 1e-9]
     for a, b in zip(q, mid):

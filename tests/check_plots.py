@@ -24,7 +24,6 @@ Usage:
       plot.sh must fail with a message for a missing directory and for a
       directory that holds no output file.
 """
-import csv
 import json
 import math
 import os
@@ -33,6 +32,10 @@ import shutil
 import struct
 import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import read_csv  # noqa: E402
 
 failures = []
 
@@ -47,8 +50,7 @@ def columns(path):
     """Columns of a CSV file as lists of floats; None if the file is absent."""
     if not os.path.isfile(path):
         return None
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
+    rows = read_csv(path)
     return {k: [float(r[k]) for r in rows] for k in rows[0]}
 
 

@@ -15,13 +15,13 @@ import argparse
 import math
 import os
 import re
-import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cycloid_prm import read_prm  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import prm_getter, run_cycloid  # noqa: E402
 
 VERTEX_TOL = 1e-9  # mm: vertices are exact profile points
 HOLE_TOL = 1e-8  # mm: holes as written (STEP keeps 13 digits)
@@ -273,7 +273,7 @@ def coarse_run(prm, exe, tol, prof):
     text += f"\nsubsection Profile\n  set Chord tolerance = {tol!r}\nend\n"
     with open("coarse.prm", "w") as f:
         f.write(text)
-    out = subprocess.run([exe, "coarse.prm"], capture_output=True, text=True, check=True).stdout
+    out = run_cycloid(None, exe, "coarse.prm", check=True).stdout
     print(out)
     v, dev = check_output("coarse", prof, tol)
     m = re.search(r"max chord deviation ([0-9.eE+-]+) um", out)
@@ -290,7 +290,7 @@ def main():
     parser.add_argument("exe")
     parser.add_argument("--coarse", type=float)
     args = parser.parse_args()
-    get = read_prm(args.prm)
+    get = prm_getter(args.prm)
     prof = Profile(get)
     tol = float(get("Profile", "Chord tolerance", "1e-4"))
     v, dev = check_output(args.np1, prof, tol)

@@ -20,11 +20,14 @@ Usage: check_quasi_static.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
 """
 import argparse
 import os
-import subprocess
 import sys
 import tempfile
+from pathlib import Path
 
 from checker import check, rows, verdict
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import run_cycloid  # noqa: E402
 
 
 def main(prm, dir1, dir2, exe, stiffer=None, close=None):
@@ -58,7 +61,7 @@ def main(prm, dir1, dir2, exe, stiffer=None, close=None):
         text = text.replace("set Output directory", f"set Output directory = {tmp}/a\n# ")
         with open(f"{tmp}/a.prm", "w") as f:
             f.write(text)
-        subprocess.run([exe, f"{tmp}/a.prm"], check=True, capture_output=True)
+        run_cycloid(None, exe, f"{tmp}/a.prm", check=True)
         pa = rows(f"{tmp}/a/pin_forces.csv")
     last = s2[-1]["step"]
     fe = sorted(int(r["pin"]) for r in p2 if r["step"] == last and float(r["Fn_N"]) > 0)

@@ -24,10 +24,13 @@ largest differences are printed. benchmarks/ranks/run.py uses compare()
 for its table (doc/ranks.md).
 """
 import os
-import subprocess
 import sys
+from pathlib import Path
 
 from checker import check, rows, verdict
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import run_cycloid  # noqa: E402
 
 TOL = 1e-8
 
@@ -79,20 +82,10 @@ def prm_into(prm, work, distributed=False):
     return path
 
 
-def mpirun_flags(ranks):
-    """mpirun's flags for @p ranks ranks: as root, and oversubscribed
-    where the ranks exceed the cores."""
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    if ranks > (os.cpu_count() or 1):
-        flags.append("--oversubscribe")
-    return flags
-
-
 def run(prm, exe, ranks, work, distributed=False):
-    """Run @p prm on @p ranks ranks with its output in @p work."""
-    path = prm_into(prm, work, distributed)
-    p = subprocess.run(["mpirun"] + mpirun_flags(ranks) + ["-np", str(ranks), exe, path],
-                       capture_output=True, text=True)
+    """Run @p prm on @p ranks ranks (oversubscribed where the ranks exceed
+    the cores) with its output in @p work."""
+    p = run_cycloid(ranks, exe, prm_into(prm, work, distributed))
     return p.returncode, p.stdout[-2000:] + p.stderr[-2000:]
 
 

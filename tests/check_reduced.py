@@ -35,13 +35,16 @@ file). The script runs
 """
 import argparse
 import os
-import subprocess
 import sys
+from pathlib import Path
 
 OUTPUT = ""
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checker import check, rows, verdict  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import run_cycloid  # noqa: E402
 
 
 def run(exe, prm_text, work, name, ranks):
@@ -50,13 +53,7 @@ def run(exe, prm_text, work, name, ranks):
     with open(prm, "w") as f:
         f.write(prm_text.replace("set Output directory = " + OUTPUT,
                                  "set Output directory = " + out))
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    if (os.cpu_count() or 1) < ranks:
-        flags.append("--oversubscribe")
-    with open(out + ".log", "w") as log:
-        rc = subprocess.call(["mpirun"] + flags + ["-np", str(ranks), exe, prm],
-                             stdout=log, stderr=subprocess.STDOUT)
-    if rc != 0:
+    if run_cycloid(ranks, exe, prm, log=out + ".log").returncode != 0:
         sys.exit("%s failed, see %s.log" % (name, out))
     return rows(os.path.join(out, "stiffness.csv")), rows(os.path.join(out, "pin_forces.csv"))
 

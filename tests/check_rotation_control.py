@@ -9,22 +9,17 @@ given beta the contact problem has the same solution, so the reaction torque
 must equal the target torque (1e-8), with the same K_tangent and the same
 engaged pins.
 """
-import csv
 import math
 import os
-import subprocess
 import sys
+from pathlib import Path
 
-
-def rows(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import read_csv as rows, run_cycloid  # noqa: E402
 
 
 def run(exe, prm, cwd):
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    subprocess.run(["mpirun", *flags, "--oversubscribe", "-np", "2", exe, prm], cwd=cwd, check=True,
-                   capture_output=True)
+    run_cycloid(2, exe, prm, cwd=cwd, check=True, oversubscribe=True)
 
 
 def main(prm, exe, work):

@@ -25,11 +25,14 @@ in every state, or the setting did not reach ML.
 """
 import math
 import os
-import subprocess
 import sys
+from pathlib import Path
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checker import check, rows, verdict  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import run_cycloid  # noqa: E402
 
 TOLERANCE = 1e-7
 
@@ -48,11 +51,7 @@ def run(exe, prm, work, reuse=None, hierarchy=None):
         f.write("set Output directory = %s\n" % out)
         f.write("subsection Mesh\n  set Error estimate = false\nend\n")
         f.write("subsection Solver\n  %s\nend\n" % solver)
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    with open(out + ".log", "w") as log:
-        rc = subprocess.call(["mpirun"] + flags + ["-np", "2", exe, out + ".prm"],
-                             stdout=log, stderr=subprocess.STDOUT)
-    if rc != 0:
+    if run_cycloid(2, exe, out + ".prm", log=out + ".log").returncode != 0:
         sys.exit("%s failed, see %s.log" % (name, out))
     return out
 

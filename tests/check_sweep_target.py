@@ -23,24 +23,24 @@ K_tangent fluctuation unresolved) on 2 ranks and checks:
 import math
 import os
 import re
-import subprocess
 import sys
+from pathlib import Path
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cycloid_prm import read_prm  # noqa: E402
 from checker import check, rows, verdict  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import prm_getter, run_cycloid  # noqa: E402
 
 
 def main(prm, exe, work):
     os.makedirs(work, exist_ok=True)
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    r = subprocess.run(["mpirun", *flags, "--oversubscribe", "-np", "2", exe, os.path.abspath(prm)],
-                       cwd=work, capture_output=True, text=True)
+    r = run_cycloid(2, exe, os.path.abspath(prm), cwd=work, oversubscribe=True)
     print(r.stdout[-4000:])
     if r.returncode != 0:
         print(r.stderr)
         raise SystemExit("the run failed")
-    get = read_prm(prm)
+    get = prm_getter(prm)
     out = os.path.join(work, get("", "Output directory"))
     base = int(get("Mesh", "Contact refinements"))
     cap = int(get("Mesh", "Maximum sweep refinements", 2))

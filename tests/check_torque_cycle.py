@@ -21,12 +21,15 @@ Usage: check_torque_cycle.py FILE.prm DIR_1_RANK DIR_2_RANKS EXECUTABLE
 """
 import os
 import re
-import subprocess
 import sys
 import tempfile
+from pathlib import Path
 
 from catalogue_figures import ARCMIN, catalogue
 from checker import check, rows as read_csv, verdict
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import run_cycloid  # noqa: E402
 
 
 def analytic_backlash_and_rigidity(prm, exe):
@@ -36,7 +39,7 @@ def analytic_backlash_and_rigidity(prm, exe):
         text = re.sub(r"set Output directory *=.*", "set Output directory = analytic", text)
         path = os.path.join(tmp, "analytic.prm")
         open(path, "w").write(text)
-        subprocess.run([exe, path], cwd=tmp, check=True, stdout=subprocess.DEVNULL)
+        run_cycloid(None, exe, path, cwd=tmp, check=True)
         return read_csv(os.path.join(tmp, "analytic", "rigidity.csv"))[0]
 
 

@@ -50,26 +50,21 @@ Usage:
       the resumed run factorises again and computes its columns in other
       groups, so bit for bit is not expected).
 """
-import csv
 import math
 import os
 import re
-import subprocess
 import sys
+from pathlib import Path
 
 import h5py
 import numpy as np
 
-
-def rows(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import read_csv as rows, run_cycloid  # noqa: E402
 
 
 def run(exe, prm, cwd, np_=2):
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    r = subprocess.run(["mpirun", *flags, "--oversubscribe", "-np", str(np_), exe, prm], cwd=cwd,
-                       capture_output=True, text=True)
+    r = run_cycloid(np_, exe, prm, cwd=cwd, oversubscribe=True)
     if r.returncode != 0:
         print(r.stdout, r.stderr)
         raise SystemExit(f"{prm} failed")
@@ -260,10 +255,7 @@ def schur(prm, exe, work):
     open(f"{work}/evicting.prm", "w").write(variant(evicting, "evicting"))
     run(exe, "schur.prm", work)
     run(exe, "condensed.prm", work)
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    debug = subprocess.run(["mpirun", *flags, "--oversubscribe", "-np", "2", exe, "evicting.prm"],
-                           cwd=work, capture_output=True, text=True,
-                           env={**os.environ, "CYCLOID_DEBUG": "1"})
+    debug = run_cycloid(2, exe, "evicting.prm", cwd=work, env={"CYCLOID_DEBUG": "1"}, oversubscribe=True)
     failures = []
     if debug.returncode != 0:
         print(debug.stdout, debug.stderr)

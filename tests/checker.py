@@ -1,10 +1,13 @@
 """What the run checkers share: collecting the checks that fail, reading a
-CSV file's rows, the verdict with the exit status, and a run on 2 ranks
-with the debug output."""
+CSV file's rows (read_csv of scripts/cycloid_tools.py, as rows), the
+verdict with the exit status, and a run on 2 ranks with the debug output."""
 import csv
 import os
-import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
+from cycloid_tools import read_csv as rows, run_cycloid  # noqa: E402
 
 failures = []
 
@@ -14,12 +17,6 @@ def check(condition, message):
     if not condition:
         failures.append(message)
     return condition
-
-
-def rows(path):
-    """The rows of a one-header-line CSV file as dicts of strings."""
-    with open(path) as f:
-        return list(csv.DictReader(f))
 
 
 def verdict(passed="all checks passed", shown=30):
@@ -38,15 +35,10 @@ def run_debug(exe, prm, out):
     """Run @p exe on @p prm on 2 ranks with CYCLOID_DEBUG=1, stdout and
     stderr into out.log; exit naming the log if the run fails, else return
     the log's text."""
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    env = dict(os.environ, CYCLOID_DEBUG="1")
-    with open(out + ".log", "w") as log:
-        rc = subprocess.call(["mpirun"] + flags + ["-np", "2", exe, prm],
-                             stdout=log, stderr=subprocess.STDOUT, env=env)
-    text = open(out + ".log").read()
-    if rc != 0:
-        sys.exit("%s failed (see %s.log):\n%s" % (prm, out, text[-2000:]))
-    return text
+    r = run_cycloid(2, exe, prm, log=out + ".log", env={"CYCLOID_DEBUG": "1"})
+    if r.returncode != 0:
+        sys.exit("%s failed (see %s.log):\n%s" % (prm, out, r.stdout[-2000:]))
+    return r.stdout
 
 
 def merge_csv(path, columns, new, key, replaced):

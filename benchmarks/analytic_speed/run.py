@@ -11,9 +11,12 @@ Usage: benchmarks/analytic_speed/run.py [path/to/cycloid-contact] [repetitions]
 import os
 import re
 import statistics
-import subprocess
 import sys
 import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EXE = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build", "cycloid-contact")
@@ -42,7 +45,7 @@ subsection Analytic
   set Pair stiffness model = {model}
 end
 """)
-    out = subprocess.run([EXE, prm], capture_output=True, text=True, check=True).stdout
+    out = run_cycloid(None, EXE, prm, check=True).stdout
     return float(re.search(r"compute time ([0-9.eE+-]+) ms", out).group(1))
 
 

@@ -11,9 +11,12 @@ Usage: benchmarks/contact_convergence/run.py [path/to/cycloid-contact]
 """
 import csv
 import os
-import subprocess
 import sys
 import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EXE = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build", "cycloid-contact")
@@ -43,12 +46,8 @@ def run(tmp, run_mode, n):
     out = f"{tmp}/{run_mode}-{n}"
     with open(f"{out}.prm", "w") as f:
         f.write(PRM.format(run=run_mode, out=out, n=n))
-    cmd = ["mpirun", "-np", "2", EXE, f"{out}.prm"]
-    if os.geteuid() == 0:
-        cmd.insert(1, "--allow-run-as-root")
-    subprocess.run(cmd, check=True, capture_output=True)
-    with open(f"{out}/stiffness.csv") as f:
-        return list(csv.DictReader(f))
+    run_cycloid(2, EXE, f"{out}.prm", check=True)
+    return read_csv(f"{out}/stiffness.csv")
 
 
 def main():

@@ -33,11 +33,12 @@ import math
 import os
 import re
 import resource
-import signal
-import subprocess
 import sys
 import tempfile
-import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, richardson, run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -143,30 +144,13 @@ def run_once(args, work, part, label, dim, discs, support, torque, mesh, modifie
     prm = out + ".prm"
     with open(prm, "w") as f:
         f.write(prm_text(out, dim, discs, support, torque, mesh, modified))
-    cmd = ["mpirun", "-np", str(args.ranks), args.exe, prm]
-    if os.geteuid() == 0:
-        cmd.insert(1, "--allow-run-as-root")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     load = os.getloadavg()[0]
-    t0 = time.monotonic()
-    with open(out + ".log", "w") as logf:
-        p = subprocess.Popen(cmd, stdout=logf, stderr=subprocess.STDOUT, start_new_session=True)
-        try:
-            rc = p.wait(timeout=args.timeout)
-            status = "ok" if rc == 0 else f"exit {rc}"
-        except subprocess.TimeoutExpired:
-            os.killpg(p.pid, signal.SIGTERM)  # the process group of this mpirun only
-            try:
-                p.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, signal.SIGKILL)
-                p.wait()
-            status = f"timeout {args.timeout:.0f} s"
-    wall = time.monotonic() - t0
+    p = run_cycloid(args.ranks, args.exe, prm, log=out + ".log", timeout=args.timeout)
+    status = f"timeout {args.timeout:.0f} s" if p.timed_out else "ok" if p.returncode == 0 else f"exit {p.returncode}"
+    wall, log = p.wall_s, p.stdout
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    with open(out + ".log") as f:
-        log = f.read()
     cells = re.search(r"mesh: .*?(\d+) cells", log)
     base = {"part": part, "case": label, "dim": dim, "discs": discs,
             "contact_element_mm": mesh.get("Contact element size", 0.25),
@@ -182,19 +166,18 @@ def run_once(args, work, part, label, dim, discs, support, torque, mesh, modifie
     rows = []
     path = os.path.join(out, "stiffness.csv")
     if status == "ok" and os.path.exists(path):
-        with open(path) as f:
-            for r in csv.DictReader(f):
-                row = dict(base)
-                row.update({"torque_Nm": float(r["torque_Nm"]), "state": int(r["step"]),
-                            "dofs": int(r["dofs"]),
-                            "K_secant_Nm_per_rad": float(r["K_secant_Nm_per_rad"]),
-                            "K_tangent_Nm_per_rad": float(r["K_tangent_Nm_per_rad"]),
-                            "K_secant_elastic_Nm_per_rad": float(r["K_secant_elastic_Nm_per_rad"]),
-                            "max_pin_force_N": float(r["max_pin_force_N"]),
-                            "pins_in_contact": int(r["pins_in_contact"]),
-                            "active_set_iterations": int(r["active_set_iterations"]),
-                            "state_wall_s": float(r["wall_s"])})
-                rows.append(row)
+        for r in read_csv(path):
+            row = dict(base)
+            row.update({"torque_Nm": float(r["torque_Nm"]), "state": int(r["step"]),
+                        "dofs": int(r["dofs"]),
+                        "K_secant_Nm_per_rad": float(r["K_secant_Nm_per_rad"]),
+                        "K_tangent_Nm_per_rad": float(r["K_tangent_Nm_per_rad"]),
+                        "K_secant_elastic_Nm_per_rad": float(r["K_secant_elastic_Nm_per_rad"]),
+                        "max_pin_force_N": float(r["max_pin_force_N"]),
+                        "pins_in_contact": int(r["pins_in_contact"]),
+                        "active_set_iterations": int(r["active_set_iterations"]),
+                        "state_wall_s": float(r["wall_s"])})
+            rows.append(row)
     if not rows:
         row = dict(base)
         row.update({"torque_Nm": torque, "state": "", "dofs": ""})
@@ -209,16 +192,6 @@ def run_once(args, work, part, label, dim, discs, support, torque, mesh, modifie
                   f"Fmax {r['max_pin_force_N']:7.1f} N  wall {wall:7.1f} s (grid {base['grid_s']:.1f}, "
                   f"solve {base['solve_s']:.1f})  cpu {cpu:7.1f} s  load {load:.1f}", flush=True)
     return rows
-
-
-def richardson(fine, mid, coarse):
-    """Extrapolated value and observed order from three nested refinements
-    (h halves between them); None if the differences do not shrink monotonically."""
-    d1, d2 = mid - coarse, fine - mid
-    if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
-        return None, None
-    p = math.log(abs(d1) / abs(d2)) / math.log(2.)
-    return fine + d2 / (2. ** p - 1.), p
 
 
 def add_errors(rows, ref_case, key_fn, prefix=""):
@@ -322,29 +295,13 @@ def summary_richardson(rows, labels, what):
         return notes
     for k in ("K_secant_Nm_per_rad", "K_tangent_Nm_per_rad"):
         c, m, f = (by[l][k] for l in labels)
-        ext, p = richardson(f, m, c)
+        ext, p = richardson(c, m, f)
         if ext is None:
             notes.append(f"Richardson {what} {k} from {labels}: not monotone ({c:.5e}, {m:.5e}, {f:.5e})")
         else:
             notes.append(f"Richardson {what} {k} from {labels}: {ext:.5e} (order {p:.2f}); "
                          f"finest is {100 * (f - ext) / ext:+.2f} % from it")
     return notes
-
-
-def parse(v):
-    for t in (int, float):
-        try:
-            return t(v)
-        except ValueError:
-            pass
-    return v
-
-
-def read_csv(path):
-    if not os.path.exists(path):
-        return []
-    with open(path) as f:
-        return [{k: parse(v) for k, v in r.items()} for r in csv.DictReader(f)]
 
 
 def has_k(r):
@@ -449,8 +406,8 @@ def main():
     for part, lst in (("seed", SEED), ("mod", MOD), ("3d", THREE_D), ("3d1", ONE_DISC)):
         for i, c in enumerate(lst):
             order[(part, c[0])] = i
-    rows2d = merge([] if args.fresh else read_csv(path2d), new2d, order)
-    rows3d = merge([] if args.fresh else read_csv(path3d), new3d, order)
+    rows2d = merge([] if args.fresh else read_csv(path2d, (int, float), missing_ok=True), new2d, order)
+    rows3d = merge([] if args.fresh else read_csv(path3d, (int, float), missing_ok=True), new3d, order)
     notes = analyse(rows2d, rows3d)
     if new2d or (rows2d and args.fresh):
         write_csv(path2d, rows2d)

@@ -15,17 +15,12 @@ discs):
 
 Usage: python3 benchmarks/cost_model/fit.py [doc/ladder/ladder.csv]
 """
-import csv
 import math
 import sys
+from pathlib import Path
 
-
-def fit_power(xs, ys):
-    lx = [math.log(x) for x in xs]
-    ly = [math.log(y) for y in ys]
-    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
-    p = sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
-    return math.exp(my - p * mx), p
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import fit_power, read_csv  # noqa: E402
 
 
 def rms(errors):
@@ -34,7 +29,7 @@ def rms(errors):
 
 def main(path):
     families = {}
-    for r in csv.DictReader(open(path)):
+    for r in read_csv(path):
         if r["dofs"] == "0" or not r["peak_memory_MB"]:
             continue  # analytic rows; contact-speed rows carry no memory
         family = "2D" if r["scene"].startswith("2D") else r["scene"]

@@ -15,9 +15,11 @@ import argparse
 import csv
 import os
 import statistics
-import subprocess
 import sys
-import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EXE = os.path.join(ROOT, "build", "cycloid-contact")
@@ -40,7 +42,6 @@ def main():
     ap.add_argument("--repeat", type=int, default=2)
     args = ap.parse_args()
     os.makedirs(WORK, exist_ok=True)
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     times = {name: [] for name, _ in VARIANTS}
     result = {}
     load = os.getloadavg()[0]
@@ -49,11 +50,8 @@ def main():
             out = os.path.join(WORK, f"v{i}")
             with open(out + ".prm", "w") as f:
                 f.write(BODY.format(out=out, mesh=mesh))
-            t0 = time.time()
-            subprocess.run(["mpirun", "-np", "2", EXE, out + ".prm"], check=True, env=env,
-                           stdout=subprocess.DEVNULL)
-            times[name].append(time.time() - t0)
-            result[name] = list(csv.DictReader(open(os.path.join(out, "stiffness.csv"))))[0]
+            times[name].append(run_cycloid(2, EXE, out + ".prm", check=True).wall_s)
+            result[name] = read_csv(os.path.join(out, "stiffness.csv"))[0]
     rows = []
     for name, _ in VARIANTS:
         s = result[name]

@@ -25,9 +25,11 @@ run again). Writes doc/error-estimate/halo.csv.
 import argparse
 import csv
 import os
-import subprocess
 import sys
-import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EXE = os.path.join(ROOT, "build", "cycloid-contact")
@@ -56,16 +58,12 @@ def run(name, entries, ranks):
         text += "subsection Mesh\n" + "".join("  set %s = %s\n" % kv for kv in entries.items()) + "end\n"
         with open(out + ".prm", "w") as f:
             f.write(text)
-        flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-        start = time.time()
-        with open(out + ".log", "w") as log:
-            rc = subprocess.call(["mpirun"] + flags + ["-np", str(ranks), EXE, out + ".prm"],
-                                 stdout=log, stderr=subprocess.STDOUT)
-        if rc != 0:
+        r = run_cycloid(ranks, EXE, out + ".prm", log=out + ".log")
+        if r.returncode != 0:
             sys.exit("%s failed, see %s.log" % (name, out))
-        print("%s: %.0f s" % (name, time.time() - start), flush=True)
-    states = list(csv.DictReader(open(os.path.join(out, "stiffness.csv"))))
-    pins = list(csv.DictReader(open(os.path.join(out, "pin_forces.csv"))))
+        print("%s: %.0f s" % (name, r.wall_s), flush=True)
+    states = read_csv(os.path.join(out, "stiffness.csv"))
+    pins = read_csv(os.path.join(out, "pin_forces.csv"))
     return states, pins
 
 

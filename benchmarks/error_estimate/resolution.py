@@ -32,9 +32,13 @@ import csv
 import math
 import os
 import sys
+from pathlib import Path
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import validate  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv  # noqa: E402
 
 ROOT = validate.ROOT
 LEVELS_2D = [0, 1, 2, 3, 4]
@@ -71,14 +75,14 @@ def measured(name, body, levels, ref_cr, ranks):
 
 def hertz_width_scale(body, ref_cr, ranks):
     """(2a, F) of the most loaded pin of the live 3D reference run."""
-    out = [r for r in csv.DictReader(open(os.path.join(
-        validate.WORK, "".join(c if c.isalnum() else "_" for c in body) + f"_cr{ref_cr}_ref", "pin_forces.csv")))]
+    out = read_csv(os.path.join(
+        validate.WORK, "".join(c if c.isalnum() else "_" for c in body) + f"_cr{ref_cr}_ref", "pin_forces.csv"))
     most = max(out, key=lambda r: float(r["Fn_N"]))
     return 2e-3 * float(most["hertz_halfwidth_um"]), float(most["Fn_N"])
 
 
 def ladder(width, force):
-    table = list(csv.DictReader(open(os.path.join(ROOT, "doc", "ladder", "ladder.csv"))))
+    table = read_csv(os.path.join(ROOT, "doc", "ladder", "ladder.csv"))
     rows = []
     for mesh, (size, cr) in LADDER.items():
         r = next(x for x in table if x["scene"] == "3D two discs" and x["mesh"] == mesh)

@@ -26,8 +26,11 @@ bulk mesh of the runs and cannot see the bulk's error
 import argparse
 import csv
 import os
-import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EXE = os.path.join(ROOT, "build", "cycloid-contact")
@@ -142,11 +145,9 @@ end
     with open(prm, "w") as f:
         f.write(f"set Run = quasi-static\nset Output directory = {out}\n" + body + mesh)
     if not os.path.exists(os.path.join(out, "stiffness.csv")):
-        env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-        subprocess.run(["mpirun", "-np", str(ranks), EXE, prm], check=True, env=env,
-                       stdout=subprocess.DEVNULL)
-    s = list(csv.DictReader(open(os.path.join(out, "stiffness.csv"))))[0]
-    p = list(csv.DictReader(open(os.path.join(out, "pin_forces.csv"))))
+        run_cycloid(ranks, EXE, prm, check=True)
+    s = read_csv(os.path.join(out, "stiffness.csv"))[0]
+    p = read_csv(os.path.join(out, "pin_forces.csv"))
     return s, {(r["disc"], r["pin"]): float(r["Fn_N"]) for r in p}
 
 
@@ -157,7 +158,7 @@ WEIGHT = 0.5  # results::previous_change_weight
 
 
 def ladder():
-    table = list(csv.DictReader(open(os.path.join(ROOT, "doc", "ladder", "ladder.csv"))))
+    table = read_csv(os.path.join(ROOT, "doc", "ladder", "ladder.csv"))
     rows = []
     for scene, meshes in LADDER_3D:
         lv = [next(r for r in table if r["scene"] == scene and r["mesh"] == m) for m in meshes]

@@ -28,14 +28,17 @@ import argparse
 import csv
 import math
 import os
-import subprocess
 import sys
+from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 OUT = os.path.join(ROOT, "doc", "hertz")
@@ -77,24 +80,12 @@ def typed(row):
 
 
 def run_level(exe, seat, force, form, deg, glob, level, ranks=1):
-    env = dict(os.environ)
-    env.pop("CYCLOID_FORMULATION", None)
-    env.pop("CYCLOID_DEBUG", None)
-    if form == NTS:
-        env["CYCLOID_FORMULATION"] = NTS
-    if ranks == 1:
-        env["CYCLOID_DEBUG"] = "1"
-        cmd = [exe]
-    else:
-        cmd = ["mpirun", "-np", str(ranks), exe]
-        if os.geteuid() == 0:
-            cmd.insert(1, "--allow-run-as-root")
-    cmd += [seat, str(force), str(deg), str(glob), str(level)]
-    p = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    env = {"CYCLOID_FORMULATION": NTS if form == NTS else None,
+           "CYCLOID_DEBUG": "1" if ranks == 1 else None}
+    p = run_cycloid(None if ranks == 1 else ranks, exe, seat, force, deg, glob, level, env=env)
     if p.returncode != 0:
-        sys.exit(f"failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr[-2000:]}")
-    lines = p.stdout.strip().splitlines()
-    raw = next(csv.DictReader(lines))
+        sys.exit(f"failed ({p.returncode}): {' '.join(p.args)}\n{p.stderr[-2000:]}")
+    raw = read_csv(p.stdout.strip().splitlines())[0]
     row = typed(raw)
     profile = []
     for line in p.stderr.splitlines():
@@ -148,11 +139,6 @@ def write_csv(path, header, rows):
         w = csv.writer(f)
         w.writerow(header)
         w.writerows(rows)
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
 
 
 # ---------------------------------------------------------------- analysis

@@ -71,10 +71,12 @@ import csv
 import math
 import os
 import re
-import signal
-import subprocess
+import sys
 import tempfile
-import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import fit_power, read_csv, richardson, run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 # The ladder as it stood before issue #14's solver work (3D timed
@@ -181,38 +183,19 @@ def run_one(args, work, tag, text, ranks=None, mpi=True):
     prm = out + ".prm"
     with open(prm, "w") as f:
         f.write(text.replace("__OUT__", out))
-    cmd = [args.exe, prm]
-    if mpi:
-        cmd = ["mpirun", "-np", str(ranks or args.ranks)] + cmd
-        if os.geteuid() == 0:
-            cmd.insert(1, "--allow-run-as-root")
     load = os.getloadavg()[0]
-    t0 = time.monotonic()
-    with open(out + ".log", "w") as logf:
-        p = subprocess.Popen(cmd, stdout=logf, stderr=subprocess.STDOUT, start_new_session=True)
-        try:
-            rc = p.wait(timeout=args.timeout)
-            status = "ok" if rc == 0 else f"exit {rc}"
-        except subprocess.TimeoutExpired:
-            os.killpg(p.pid, signal.SIGTERM)  # this mpirun's process group only
-            try:
-                p.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, signal.SIGKILL)
-                p.wait()
-            status = f"timeout {args.timeout:.0f} s"
-    wall = time.monotonic() - t0
+    p = run_cycloid((ranks or args.ranks) if mpi else None, args.exe, prm, log=out + ".log",
+                    timeout=args.timeout)
+    status = f"timeout {args.timeout:.0f} s" if p.timed_out else "ok" if p.returncode == 0 else f"exit {p.returncode}"
     path = os.path.join(out, "stiffness.csv")
     row = None
     if status == "ok" and os.path.exists(path):
-        with open(path) as f:
-            rows = list(csv.DictReader(f))
+        rows = read_csv(path)
         row = rows[-1] if rows else None
     if row is None:
-        with open(out + ".log") as f:
-            tail = " | ".join(f.read().strip().splitlines()[-4:])
+        tail = " | ".join(p.stdout.strip().splitlines()[-4:])
         print(f"  !! {tag}: {status}: {tail}", flush=True)
-    return row, wall, status, load
+    return row, p.wall_s, status, load
 
 
 def fe_row(args, work, scene, label, ranks, text, per_disc, extra=None):
@@ -337,7 +320,7 @@ def part_ranks(args, work):
 def earlier_3d():
     """The 3D two-disc runs of doc/contact-speed-3d.csv (1000 N m, 2 ranks, VTU output on)."""
     rows = []
-    for r in read_csv(os.path.join(ROOT, "doc", "contact-speed-3d.csv")):
+    for r in read_csv(os.path.join(ROOT, "doc", "contact-speed-3d.csv"), NUMBERS, missing_ok=True):
         if r.get("part") != "3d" or r.get("status") != "ok":
             continue
         rows.append({"scene": "3D two discs", "mesh": r["case"], "ranks": 2, "source": "contact-speed",
@@ -393,6 +376,7 @@ def part_seed_study(args, work):
 
 
 # ---------------------------------------------------------------- CSV helpers
+NUMBERS = (int, float)  # the CSV files' numbers as read back: ints, else floats
 COLUMNS = ["scene", "mesh", "ranks", "source", "normalisation", "torque_Nm", "dofs", "K_secant", "K_tangent",
            "K_secant_raw", "K_tangent_raw", "max_pin_force_N", "pins_in_contact", "active_set_iterations",
            "linear_iterations", "wall_s", "program_wall_s", "peak_memory_MB", "load_avg_at_start",
@@ -400,22 +384,6 @@ COLUMNS = ["scene", "mesh", "ranks", "source", "normalisation", "torque_Nm", "do
            "own_err_K_tangent_pct", "own_err_Fmax_pct", "pareto", "status"]
 SS_COLUMNS = ["sweep", "value", "torque_Nm", "model", "K_secant", "K_tangent", "max_pin_force_N", "pins_in_contact", "dofs",
               "wall_s", "status"]
-
-
-def parse(v):
-    for t in (int, float):
-        try:
-            return t(v)
-        except (ValueError, TypeError):
-            pass
-    return v
-
-
-def read_csv(path):
-    if not os.path.exists(path):
-        return []
-    with open(path) as f:
-        return [{k: parse(v) for k, v in r.items()} for r in csv.DictReader(f)]
 
 
 def fmt(v):
@@ -438,16 +406,6 @@ def has_k(r):
 
 
 # ---------------------------------------------------------------- analysis
-def richardson(coarse, mid, fine, ratio=2.0):
-    """Extrapolated value, observed order; None when the differences do not
-    shrink monotonically (not asymptotic)."""
-    d1, d2 = mid - coarse, fine - mid
-    if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
-        return None, None
-    p = math.log(abs(d1) / abs(d2)) / math.log(ratio)
-    return fine + d2 / (ratio ** p - 1.0), p
-
-
 def reference(rows, notes):
     """Reference K (secant, tangent) and largest pin force from the richest
     scene; returns (dict, description)."""
@@ -634,18 +592,6 @@ def plot_error(path, pts, ref):
     print("written", os.path.relpath(path, ROOT))
 
 
-def fit_power(x, y):
-    lx = [math.log(v) for v in x]
-    ly = [math.log(v) for v in y]
-    n = len(lx)
-    mx, my = sum(lx) / n, sum(ly) / n
-    sxx = sum((a - mx) ** 2 for a in lx)
-    if sxx == 0:
-        return None, None
-    b = sum((a - mx) * (c - my) for a, c in zip(lx, ly)) / sxx
-    return b, math.exp(my - b * mx)
-
-
 def fitted_runs(rows, scene):
     """The runs of @p scene that the cost fit uses: this benchmark's own
     (one timing condition; the contact-speed rows were timed under another
@@ -669,18 +615,18 @@ def plot_cost(path, rows, notes):
         groups.setdefault((r["scene"], fam), []).append(r)
         ax.loglog(r["dofs"], r["wall_s"], "^" if fam == "adaptive" else ("s" if r["source"] != "ladder" else "o"),
                   color=COLOURS[r["scene"]], mfc="none" if r["source"] != "ladder" else None, ms=5)
-    before = {s: fitted_runs(read_csv(BEFORE), s) for s in SCENES[2:]}
+    before = {s: fitted_runs(read_csv(BEFORE, NUMBERS, missing_ok=True), s) for s in SCENES[2:]}
     for s in SCENES[2:]:
         rr = fitted_runs(fe, s)
         if len(rr) >= 2:
-            b, a = fit_power([r["dofs"] for r in rr], [r["wall_s"] for r in rr])
+            a, b = fit_power([r["dofs"] for r in rr], [r["wall_s"] for r in rr])
             xs = sorted(r["dofs"] for r in rr)
             ax.plot(xs, [a * x ** b for x in xs], "-", color=COLOURS[s], lw=0.8, label=f"{s}: wall ~ DoFs^{b:.2f}")
             notes.append(f"cost fit {s} (a-priori meshes, {len(rr)} runs): wall ~ DoFs^{b:.2f}")
         old = before[s]
         if len(old) >= 2 and {r["wall_s"] for r in old} != {r["wall_s"] for r in rr}:
             # The scene was re-timed: its fit before issue #14 beside it.
-            b, a = fit_power([r["dofs"] for r in old], [r["wall_s"] for r in old])
+            a, b = fit_power([r["dofs"] for r in old], [r["wall_s"] for r in old])
             xs = sorted(r["dofs"] for r in old)
             ax.plot(xs, [a * x ** b for x in xs], ":", color=COLOURS[s], lw=1.2,
                     label=f"{s}, before #14: wall ~ DoFs^{b:.2f}")
@@ -692,7 +638,7 @@ def plot_cost(path, rows, notes):
     big = [r for r in fe if r["dofs"] >= 1e5 and r["source"] == "ladder" and "+ad" not in r["mesh"]
            and not r["scene"].startswith("reduced")]
     if len(big) >= 2:
-        b, a = fit_power([r["dofs"] for r in big], [r["wall_s"] for r in big])
+        a, b = fit_power([r["dofs"] for r in big], [r["wall_s"] for r in big])
         xs = [min(r["dofs"] for r in big), max(r["dofs"] for r in big)]
         ax.plot(xs, [a * x ** b for x in xs], "k--", lw=1, label=f"all a-priori runs >= 1e5 DoFs: wall ~ DoFs^{b:.2f}")
         notes.append(f"cost fit all a-priori FE runs of this benchmark with >= 1e5 DoFs ({len(big)}): "
@@ -753,7 +699,7 @@ def plot_seed_study(path, rows):
 
 def analyse(args):
     notes = []
-    rows = read_csv(os.path.join(args.out, "ladder.csv"))
+    rows = read_csv(os.path.join(args.out, "ladder.csv"), NUMBERS, missing_ok=True)
     rows = [r for r in rows if r.get("source") != "contact-speed"] + earlier_3d()
     derived = [c for c in COLUMNS if c.startswith(("err_", "own_")) or c == "pareto"]
     for r in rows:  # recomputed below
@@ -814,7 +760,7 @@ def analyse(args):
                          f"2 ranks {t['wall_2_s']:.1f} s, speed-up {t['speedup']:.2f} (program's state wall "
                          f"{t['solve_speedup']:.2f}); dK_sec {t['dK_secant_rel']:.1e}, dK_tan {t['dK_tangent_rel']:.1e}, "
                          f"dFmax {t['dFmax_rel']:.1e}, pins {t['pins_1']}/{t['pins_2']}, AS it. {t['iters_1']}/{t['iters_2']}")
-    ss = read_csv(os.path.join(args.out, "seed-study-fe.csv"))
+    ss = read_csv(os.path.join(args.out, "seed-study-fe.csv"), NUMBERS, missing_ok=True)
     if ss:
         plot_seed_study(os.path.join(args.out, "seed-study-fe.png"), ss)
         for sweep in ("pin radius", "eccentricity"):
@@ -870,7 +816,7 @@ def main():
             if part == "seed-study":
                 new = part_seed_study(args, work)
                 sp = os.path.join(args.out, "seed-study-fe.csv")
-                old = read_csv(sp)
+                old = read_csv(sp, NUMBERS, missing_ok=True)
                 fresh = {(r["sweep"], r["value"], r["model"]) for r in new}
                 rows = [r for r in old if (r["sweep"], r["value"], r["model"]) not in fresh] + new
                 rows.sort(key=lambda r: (r["sweep"], r["model"], r["value"]))
@@ -879,7 +825,7 @@ def main():
             print(f"part {part}", flush=True)
             new = funcs[part](args, work)
             # Replace the re-run (scene, mesh, ranks) rows, keep the rest; write after every part.
-            old = [r for r in read_csv(path) if r.get("source") in ("ladder", "ranks")]
+            old = [r for r in read_csv(path, NUMBERS, missing_ok=True) if r.get("source") in ("ladder", "ranks")]
             fresh = {(r["scene"], r["mesh"], r["ranks"], r["source"]) for r in new}
             rows = [r for r in old if (r["scene"], r["mesh"], r["ranks"], r["source"]) not in fresh] + new
             write_csv(path, rows, COLUMNS)

@@ -27,8 +27,11 @@ import csv
 import os
 import re
 import statistics
-import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 PRM = os.path.join(ROOT, "benchmarks", "ml_aggregation", "two-discs-3d.prm")
@@ -46,23 +49,19 @@ def run(name, exe, prm, ranks, k, extra_env=None):
     with open(out + ".prm", "w") as f:
         f.write(open(prm).read())
         f.write("\nset Output directory = %s\n" % out)
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
     load = os.getloadavg()[0]
     env = dict(os.environ, CYCLOID_DEBUG="1", **(extra_env or {}))
-    exports = sum((["-x", key] for key in env if key.startswith("CYCLOID_")), [])
-    p = subprocess.run(["/usr/bin/time", "-f", "TIME %e %M", "mpirun"] + flags +
-                       exports + ["-np", str(ranks), exe, out + ".prm"],
-                       capture_output=True, text=True, env=env)
+    p = run_cycloid(ranks, exe, out + ".prm", env=env, peak_memory=True,
+                    export=[key for key in env if key.startswith("CYCLOID_")])
     if p.returncode != 0:
         sys.exit("%s failed:\n%s" % (out, p.stdout[-2000:] + p.stderr[-2000:]))
-    wall, rss = re.search(r"TIME ([\d.]+) (\d+)", p.stderr).groups()
-    row = next(csv.DictReader(open(os.path.join(out, "stiffness.csv"))))
+    row = read_csv(os.path.join(out, "stiffness.csv"))[0]
     dofs = int(row["dofs"])
     peak = float(row["peak_memory_MB"])
     its = [tuple(float(x) for x in m.groups()) for m in ITERATION.finditer(p.stderr)]
-    return {"build": name, "repeat": k, "load_average": load, "wall_s": float(wall),
+    return {"build": name, "repeat": k, "load_average": load, "wall_s": p.wall_s,
             "state_wall_s": float(row["wall_s"]), "dofs": dofs,
-            "peak_memory_MB": peak, "peak_rss_largest_rank_MB": int(rss) / 1024.,
+            "peak_memory_MB": peak, "peak_rss_largest_rank_MB": p.peak_rss_MB,
             "kB_per_dof": 1024. * peak / dofs,
             "kB_per_dof_without_libraries": 1024. * (peak - ranks * LIBRARIES_MB) / dofs,
             "linear_iterations": int(row["linear_iterations"]),

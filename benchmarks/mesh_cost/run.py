@@ -10,9 +10,12 @@ Usage: benchmarks/mesh_cost/run.py [path/to/cycloid-contact]
 """
 import os
 import re
-import subprocess
 import sys
 import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EXE = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build", "cycloid-contact")
@@ -27,9 +30,7 @@ def run(scene, ranks, tmp):
     prm = os.path.join(tmp, "mesh.prm")
     with open(prm, "w") as f:
         f.write(f"set Run = mesh\nset Output directory = {tmp}/out\nsubsection Scene\n  {scene}\nend\n")
-    cmd = ["mpirun", "--allow-run-as-root", "-np", str(ranks), EXE, prm] if os.geteuid() == 0 else \
-        ["mpirun", "-np", str(ranks), EXE, prm]
-    out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
+    out = run_cycloid(ranks, EXE, prm, check=True).stdout
     cells = re.search(r"cells: (\d+) \(discs (\d+), pins (\d+), housing (\d+)\), vertices (\d+)", out)
     quality = re.search(r"min scaled Jacobian ([0-9.e+-]+).*max aspect ratio ([0-9.e+-]+)", out)
     seconds = float(re.search(r"generated in ([0-9.e+-]+) s", out).group(1))

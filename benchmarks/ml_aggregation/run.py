@@ -23,8 +23,11 @@ import csv
 import os
 import re
 import statistics
-import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 PRM = os.path.join(os.path.dirname(os.path.abspath(__file__)), "two-discs-3d.prm")
@@ -44,16 +47,13 @@ def run(exes, solver, k):
     with open(out + ".prm", "w") as f:
         f.write(open(PRM).read())
         f.write("set Output directory = %s\n" % out)
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
     load = os.getloadavg()[0]
-    p = subprocess.run(["/usr/bin/time", "-f", "TIME %e %M", "mpirun"] + flags +
-                       ["-np", "2", exe, out + ".prm"], capture_output=True, text=True)
+    p = run_cycloid(2, exe, out + ".prm", peak_memory=True)
     if p.returncode != 0:
         sys.exit("%s failed:\n%s" % (out, p.stdout[-2000:] + p.stderr[-2000:]))
-    wall, rss = re.search(r"TIME ([\d.]+) (\d+)", p.stderr).groups()
-    row = next(csv.DictReader(open(os.path.join(out, "stiffness.csv"))))
-    return {"solver": solver, "repeat": k, "load_average": load, "wall_s": float(wall),
-            "peak_rss_largest_rank_MB": int(rss) / 1024.,
+    row = read_csv(os.path.join(out, "stiffness.csv"))[0]
+    return {"solver": solver, "repeat": k, "load_average": load, "wall_s": p.wall_s,
+            "peak_rss_largest_rank_MB": p.peak_rss_MB,
             "linear_iterations": int(row["linear_iterations"]),
             "active_set_iterations": int(row["active_set_iterations"]),
             "K_secant_Nm_per_rad": float(row["K_secant_Nm_per_rad"]),

@@ -23,10 +23,12 @@ import csv
 import os
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
-import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PRM = os.path.join(ROOT, "prm", "phase-sweep-2d.prm")
@@ -43,24 +45,16 @@ def prm_text(out, group, phases):
     return text + "subsection Mesh\n  set Target accuracy = 0\nend\n"
 
 
-def rows(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
 def run(exe, tmp, name, ranks, group, phases):
     out = os.path.join(tmp, name)
     shutil.rmtree(out, ignore_errors=True)
     prm = os.path.join(tmp, name + ".prm")
     with open(prm, "w") as f:
         f.write(prm_text(out, group, phases))
-    flags = ["--allow-run-as-root"] if os.geteuid() == 0 else []
     load = os.getloadavg()[0]
-    start = time.monotonic()
-    log = subprocess.run(["mpirun", *flags, "-np", str(ranks), exe, prm],
-                         capture_output=True, text=True, check=True).stdout
-    wall = time.monotonic() - start
-    states = rows(os.path.join(out, "stiffness.csv"))
+    p = run_cycloid(ranks, exe, prm, check=True)
+    log, wall = p.stdout, p.wall_s
+    states = read_csv(os.path.join(out, "stiffness.csv"))
     busy = re.search(r"busy time: (.*); the sweep", log)
     return {"wall": wall, "load": load, "states": states, "busy": busy.group(1) if busy else ""}
 

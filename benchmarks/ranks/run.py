@@ -42,13 +42,15 @@ import argparse
 import csv
 import glob
 import os
-import re
-import subprocess
 import sys
+from pathlib import Path
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "tests"))
-from check_ranks import compare, mpirun_flags, prm_into, read  # noqa: E402
+from check_ranks import compare, prm_into, read  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 CASES = {
     "3d-one-disc": "tests/runs/quasi-static-3d.prm",
     "3d-housing": "tests/runs/quasi-static-3d-housing.prm",
@@ -71,13 +73,11 @@ def run(case, ranks, exe, mesh):
         os.remove(old)
     rank_cmd = ('exec /usr/bin/time -f %%M -o %s$OMPI_COMM_WORLD_RANK %s %s' %
                 (peak_file, exe, prm))
-    cmd = (["/usr/bin/time", "-f", "WALL %e", "mpirun"] + mpirun_flags(ranks) +
-           ["-np", str(ranks), "sh", "-c", rank_cmd])
-    p = subprocess.run(cmd, capture_output=True, text=True)
+    p = run_cycloid(ranks, "sh", "-c", rank_cmd, peak_memory=True)
     if p.returncode != 0:
         sys.exit("%s on %d ranks failed:\n%s" %
                  (case, ranks, p.stdout[-3000:] + p.stderr[-3000:]))
-    wall = float(re.search(r"WALL ([\d.]+)", p.stderr).group(1))
+    wall = p.wall_s
     peaks = [int(open(peak_file + str(r)).read().split()[-1]) / 1024.
              for r in range(ranks)]
     return wall, peaks, load, out
@@ -140,7 +140,7 @@ def main():
     # seed case is run apart); rows from before the distributed mesh are
     # shared ones.
     path = os.path.join(args.out, args.csv)
-    old = [r for r in csv.DictReader(open(path))] if os.path.exists(path) else []
+    old = read_csv(path, missing_ok=True)
     now = {(r["case"], r["triangulation"], str(r["ranks"])) for r in rows}
     old = [dict(r, repeat=r.get("repeat", 0),
                 triangulation=r.get("triangulation") or "shared") for r in old]

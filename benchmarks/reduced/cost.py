@@ -17,8 +17,11 @@ Output: cost.csv in --out.
 import argparse
 import csv
 import os
-import subprocess
-import time
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 SCENE_2D = "subsection Scene\n  set Dimension = 2\n  set Pins = elastic\n  set Pin support = axis\nend\n"
 SCENE_3D = ("subsection Scene\n  set Dimension = 3\n  set Number of discs = 2\n"
@@ -53,13 +56,8 @@ def main():
                     "subsection Loading\n  set Torque = %s\n  set Crank angle = 0\n"
                     "  set Number of phases = %d\nend\n" % (out, scene, torques, phases))
         load = os.getloadavg()[0]
-        t0 = time.monotonic()
-        with open(out + ".log", "w") as log:
-            subprocess.check_call(["mpirun", "--allow-run-as-root", "-np", "2",
-                                   os.path.abspath(args.exe), prm], stdout=log,
-                                  stderr=subprocess.STDOUT)
-        wall = time.monotonic() - t0
-        states = list(csv.DictReader(open(os.path.join(out, "stiffness.csv"))))
+        wall = run_cycloid(2, os.path.abspath(args.exe), prm, log=out + ".log", check=True).wall_s
+        states = read_csv(os.path.join(out, "stiffness.csv"))
         further = [float(s["wall_s"]) for s in states[1:]] if phases == 1 else []
         row = dict(case=name, states=len(states), dofs=states[0]["dofs"],
                    wall_s="%.2f" % wall,

@@ -24,9 +24,11 @@ Output: validation-<dim>d.csv in --out.
 import argparse
 import csv
 import os
-import subprocess
 import sys
-import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 PROFILES = {
     'zero': '',
@@ -48,19 +50,14 @@ def prm_text(run, out, dim, support, profile, crank, torques, mesh):
 
 
 def run(exe, ranks, prm, log):
-    cmd = ['mpirun', '--allow-run-as-root', '-np', str(ranks), exe, prm]
-    start = time.time()
-    with open(log, 'w') as f:
-        rc = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT)
-    if rc != 0:
-        sys.exit('failed: %s (see %s)' % (' '.join(cmd), log))
-    return time.time() - start
+    p = run_cycloid(ranks, exe, prm, log=log)
+    if p.returncode != 0:
+        sys.exit('failed: %s (see %s)' % (' '.join(p.args), log))
+    return p.wall_s
 
 
 def read(out):
-    states = list(csv.DictReader(open(os.path.join(out, 'stiffness.csv'))))
-    pins = list(csv.DictReader(open(os.path.join(out, 'pin_forces.csv'))))
-    return states, pins
+    return read_csv(os.path.join(out, 'stiffness.csv')), read_csv(os.path.join(out, 'pin_forces.csv'))
 
 
 def compare(red, fe):

@@ -16,15 +16,18 @@ Usage: benchmarks/seed_study/reduced.py [path/to/cycloid-contact] [--ranks N]
 """
 import csv
 import os
-import subprocess
 import sys
 import tempfile
+from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 ARGS = [a for a in sys.argv[1:] if not a.startswith("--")]
@@ -59,12 +62,10 @@ subsection Loading
   set Crank angle = 0
 end
 {scene}""")
-        cmd = ["mpirun", "--allow-run-as-root", "-np", str(RANKS), EXE, prm]
-        res = subprocess.run(cmd, capture_output=True, text=True)
+        res = run_cycloid(RANKS, EXE, prm)
         if res.returncode != 0:
             return None, (res.stdout + res.stderr).strip().splitlines()[-1]
-        with open(f"{tmp}/out/stiffness.csv") as f:
-            rows = list(csv.DictReader(f))
+        rows = read_csv(f"{tmp}/out/stiffness.csv")
     return {float(r["torque_Nm"]): r for r in rows}, ""
 
 
@@ -131,6 +132,6 @@ def plot(records):
 
 if __name__ == "__main__":
     if "--plot-only" in sys.argv:
-        plot(list(csv.DictReader(open(os.path.join(OUT, "seed_study_reduced.csv")))))
+        plot(read_csv(os.path.join(OUT, "seed_study_reduced.csv")))
     else:
         main()

@@ -22,15 +22,18 @@ Usage: benchmarks/seed_study/run.py [path/to/cycloid-contact]
 """
 import csv
 import os
-import subprocess
 import sys
 import tempfile
+from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EXE = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build", "cycloid-contact")
@@ -63,11 +66,10 @@ subsection Analytic
   set Pair stiffness model = {model}
 end
 """)
-        res = subprocess.run([EXE, prm], capture_output=True, text=True)
+        res = run_cycloid(None, EXE, prm)
         if res.returncode != 0:
             return None, res.stderr.strip().splitlines()[-1] if res.stderr else "failed"
-        with open(f"{tmp}/out/stiffness.csv") as f:
-            rows = list(csv.DictReader(f))
+        rows = read_csv(f"{tmp}/out/stiffness.csv")
     out = {}
     for t in TORQUES:
         sel = [r for r in rows if float(r["torque_Nm"]) == t]

@@ -23,9 +23,11 @@ import csv
 import os
 import re
 import statistics
-import subprocess
 import sys
-import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import read_csv, run_cycloid  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 EXE = os.path.join(ROOT, "build", "cycloid-contact")
@@ -52,15 +54,12 @@ def run(case, reuse, k):
         f.write(prm_text(case))
         f.write("set Output directory = %s\n" % out)
         f.write("subsection Solver\n  set Preconditioner reuse = %s\nend\n" % ("true" if reuse else "false"))
-    flags = ["--allow-run-as-root"] if os.getuid() == 0 else []
-    start = time.time()
-    log = subprocess.run(["mpirun"] + flags + ["-np", "2", EXE, out + ".prm"], capture_output=True, text=True)
-    wall = time.time() - start
+    log = run_cycloid(2, EXE, out + ".prm")
     if log.returncode != 0:
         sys.exit("%s failed:\n%s" % (out, log.stdout[-2000:] + log.stderr[-2000:]))
-    rows = list(csv.DictReader(open(os.path.join(out, "stiffness.csv"))))
-    pins = [float(p["Fn_N"]) for p in csv.DictReader(open(os.path.join(out, "pin_forces.csv")))]
-    result = {"wall_s": wall, "states": len(rows),
+    rows = read_csv(os.path.join(out, "stiffness.csv"))
+    pins = [float(p["Fn_N"]) for p in read_csv(os.path.join(out, "pin_forces.csv"))]
+    result = {"wall_s": log.wall_s, "states": len(rows),
               "active_set_iterations": sum(int(r["active_set_iterations"]) for r in rows),
               "linear_iterations": sum(int(r["linear_iterations"]) for r in rows),
               "preconditioner_setups": sum(int(r["preconditioner_setups"]) for r in rows),

@@ -68,14 +68,13 @@ Usage:
 """
 import argparse
 import csv
-import io
 import json
 import math
 import os
 import re
-import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -83,6 +82,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+from cycloid_tools import mpirun_command, read_csv, run_cycloid, walk_prm  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PARTS = ["bar", "cycloid", "slow", "active-set", "solver", "long", "long-example", "example"]
@@ -97,33 +99,25 @@ def log(*a):
     print(*a, flush=True)
 
 
-def mpi_prefix(ranks):
-    if ranks <= 1:
-        return []
-    return ["mpirun", *(["--allow-run-as-root"] if os.getuid() == 0 else []), "-np", str(ranks)]
-
-
-def run_command(cmd, exe, env=None, timeout=1800, cwd=None):
-    """Run cmd; if the executable exe is missing or busy (being relinked),
-    wait 30 s and retry (up to 10 times). Returns (rc, stdout, stderr, wall)."""
+def run_command(ranks, exe, *args, env=None, timeout=1800):
+    """Run exe with args on ranks MPI ranks (None: without mpirun); if the
+    executable is missing or busy (being relinked), wait 30 s and retry (up
+    to 10 times). Returns (rc, stdout, stderr, wall); rc 124 at the timeout."""
     for attempt in range(10):
         if not os.access(exe, os.X_OK):
             log(f"    {exe} not there (relinking?), waiting 30 s")
             time.sleep(30)
             continue
-        start = time.time()
-        try:
-            p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout, cwd=cwd)
-        except subprocess.TimeoutExpired as e:
-            return 124, e.stdout or "", (e.stderr or "") + "\ntimeout", time.time() - start
-        wall = time.time() - start
+        p = run_cycloid(ranks, exe, *args, env=env, timeout=timeout)
+        if p.timed_out:
+            return 124, p.stdout or "", (p.stderr or "") + "\ntimeout", p.wall_s
         busy = re.search(r"Text file busy|No such file or directory.*cycloid|execvp|not found", p.stderr or "")
         if p.returncode in (126, 127) or (p.returncode != 0 and busy and not p.stdout.strip()):
             log(f"    executable busy or missing (rc {p.returncode}), waiting 30 s")
             time.sleep(30)
             continue
-        return p.returncode, p.stdout, p.stderr, wall
-    raise RuntimeError("executable unavailable: " + " ".join(cmd))
+        return p.returncode, p.stdout, p.stderr, p.wall_s
+    raise RuntimeError("executable unavailable: " + " ".join(mpirun_command(ranks, exe, *args)))
 
 
 def error_message(text):
@@ -148,15 +142,9 @@ def edit_prm(base, overrides=None, deletes=()):
     (overrides: {(section, key): value}, section "" = top level) and removed
     (deletes: [(section, key)])."""
     overrides = dict(overrides or {})
-    used, out, section = set(), [], []
-    for raw in open(base):
-        line = raw.split("#")[0].strip()
-        if line.startswith("subsection"):
-            section.append(line.split(None, 1)[1].strip())
-        elif line == "end":
-            section.pop()
-        elif line.startswith("set"):
-            key = line[3:].split("=", 1)[0].strip()
+    used, out = set(), []
+    for raw, section, key, _ in walk_prm(open(base)):
+        if key is not None:
             sk = (section[-1] if section else "", key)
             if sk in deletes:
                 continue
@@ -198,40 +186,21 @@ class FE:
                 meta["dir"] = os.path.join(d, "out")
                 return meta
         open(prm, "w").write(text)
-        env = dict(os.environ)
-        if debug:
-            env["CYCLOID_DEBUG"] = "1"
+        env = {"CYCLOID_DEBUG": "1"} if debug else None
         log(f"  {name}: running ...")
-        rc, out, err, wall = run_command(mpi_prefix(self.args.ranks) + [self.exe, prm], self.exe, env=env,
-                                         timeout=self.args.timeout)
+        ranks = self.args.ranks if self.args.ranks > 1 else None  # 1 rank: without mpirun
+        rc, out, err, wall = run_command(ranks, self.exe, prm, env=env, timeout=self.args.timeout)
         open(os.path.join(d, "stdout.log"), "w").write(out)
         open(os.path.join(d, "stderr.log"), "w").write(err)
         meta = {"rc": rc, "wall_s": wall, "debug": debug,
                 "error": error_message(out + "\n" + err) if rc != 0 else "",
                 "warnings": [l.strip() for l in (out + err).splitlines() if "warning" in l.lower()],
                 "exe_mtime": os.path.getmtime(self.exe),
-                "command": " ".join(mpi_prefix(self.args.ranks) + [self.exe, prm])}
+                "command": " ".join(mpirun_command(ranks, self.exe, prm))}
         json.dump(meta, open(meta_file, "w"), indent=1)
         log(f"  {name}: rc {rc}, {wall:.1f} s" + (f" -- {meta['error']}" if rc else ""))
         meta["dir"] = os.path.join(d, "out")
         return meta
-
-
-def read_csv(path):
-    if not os.path.exists(path):
-        return []
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    out = []
-    for r in rows:
-        o = {}
-        for k, v in r.items():
-            try:
-                o[k] = float(v)
-            except (TypeError, ValueError):
-                o[k] = v
-        out.append(o)
-    return out
 
 
 def write_csv(path, rows, keys=None):
@@ -268,22 +237,22 @@ def md_table(rows, cols, heads=None):
 
 # ---------------------------------------------------------------- part 1: bar
 def bar_run(args, scheme, cells, cfl, rho=None):
-    cmd = [args.bar, scheme, str(cells), str(cfl)] + ([str(rho)] if rho is not None else [])
+    cmd = [scheme, str(cells), str(cfl)] + ([str(rho)] if rho is not None else [])
     key = f"bar-{scheme}-{cells}-{cfl}" + (f"-{rho}" if rho is not None else "")
     cache = os.path.join(args.work, "bar", key + ".csv")
     os.makedirs(os.path.dirname(cache), exist_ok=True)
     if not args.rerun and os.path.exists(cache):
         out, wall = open(cache).read(), float("nan")
     else:
-        rc, out, err, wall = run_command(cmd, args.bar, timeout=args.timeout)
+        rc, out, err, wall = run_command(None, args.bar, *cmd, timeout=args.timeout)
         if rc != 0:
-            raise RuntimeError(f"{' '.join(cmd)} failed: {err}")
+            raise RuntimeError(f"{' '.join([args.bar] + cmd)} failed: {err}")
         open(cache, "w").write(out)
     lines = out.splitlines()
     head = lines[0]
     num = lambda pat: float(re.search(pat + r" ([-0-9.e+]+)", head).group(1))  # noqa: E731
     meta = {"dt": num(r"dt"), "tc": num(r"2L/c"), "f": num(r"v0"), "E0": num(r"E0"), "c": num(r", c")}
-    rows = list(csv.DictReader(io.StringIO("\n".join(lines[1:]))))
+    rows = read_csv(lines[1:])
     data = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
     return meta, data, wall
 
@@ -400,8 +369,8 @@ def balance_summary(e):
 
 
 def transient_series(out_dir):
-    e = read_csv(os.path.join(out_dir, "energy.csv"))
-    s = read_csv(os.path.join(out_dir, "stiffness.csv"))
+    e = read_csv(os.path.join(out_dir, "energy.csv"), numbers=(float,), missing_ok=True)
+    s = read_csv(os.path.join(out_dir, "stiffness.csv"), numbers=(float,), missing_ok=True)
     return e, s
 
 
@@ -585,7 +554,7 @@ def part_slow(args, fe):
         ("Transient", "End time"): f"{n_steps * dt:g}", ("Transient", "Ramp time"): f"{ramp_steps * dt:g}",
         ("Transient", "Crank speed"): f"{speed:g}", ("Transient", "Rayleigh mass damping"): "2e4",
         ("Transient", "Checkpoint interval"): 0, ("Transient", "Output interval"): 0})
-    qs = read_csv(os.path.join(sweep["dir"], "stiffness.csv"))
+    qs = read_csv(os.path.join(sweep["dir"], "stiffness.csv"), numbers=(float,), missing_ok=True)
     e, s = transient_series(tr["dir"])
     psi_q = np.array([r["crank_deg"] for r in qs])
     k_q = np.array([r["K_secant_Nm_per_rad"] for r in qs])
@@ -705,7 +674,7 @@ def qs_case(fe, cr, profile="modified", solver="cg-amg", formulation="mortar"):
     if formulation != "mortar":
         ov[("Contact", "Formulation")] = formulation
     m = fe.run(name, os.path.join(ROOT, QS_BASE), ov, MODS if profile == "seed" else (), debug=True)
-    rows = read_csv(os.path.join(m["dir"], "stiffness.csv"))
+    rows = read_csv(os.path.join(m["dir"], "stiffness.csv"), numbers=(float,), missing_ok=True)
     err = open(os.path.join(fe.args.work, name, "stderr.log")).read()
     sets = debug_sets(err)
     out = []
