@@ -3,6 +3,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <cycloid/postprocess/columns.h>
 #include <cycloid/postprocess/report.h>
 #include <cycloid/postprocess/sweep_noise.h>
 #include <cycloid/results/error_estimate.h>
@@ -36,14 +37,7 @@ namespace cycloid
     std::string
     Report::stiffness_header()
     {
-      return "step,crank_deg,torque_Nm,rotation_rad,K_secant_Nm_per_rad,"
-             "K_tangent_Nm_per_rad,pins_in_contact,active_set_iterations,dofs,"
-             "wall_s,K_secant_Nm_per_arcmin,K_tangent_Nm_per_arcmin,"
-             "takeup_rad,K_secant_elastic_Nm_per_rad,reaction_torque_Nm,"
-             "max_pin_force_N,linear_iterations,peak_memory_MB,"
-             "transmission_error_arcsec,preconditioner_setups,"
-             "K_secant_error,K_tangent_error,max_pin_force_error,"
-             "mesh_warning,hertz_nodes,resolution_error,bulk_error";
+      return header(stiffness_columns());
     }
 
 
@@ -51,12 +45,7 @@ namespace cycloid
     std::string
     Report::pin_forces_header()
     {
-      return "step,crank_deg,disc,pin,Fx_N,Fy_N,Fn_N,arm_mm,clearance_um,"
-             "phase_deg,approach_um,pair_stiffness_N_per_mm,contact_x_mm,"
-             "contact_y_mm,contact_halfwidth_um,hertz_halfwidth_um,"
-             "max_contact_pressure_MPa,hertz_pressure_MPa,"
-             "max_shear_stress_MPa,max_shear_depth_um,Fn_error_N,"
-             "active_nodes,hertz_nodes";
+      return header(pin_force_columns());
     }
 
 
@@ -64,11 +53,7 @@ namespace cycloid
     std::string
     Report::energy_header()
     {
-      return "step,time_s,kinetic_J,elastic_J,external_work_J,"
-             "active_set_iterations,crank_deg,torque_Nm,rotation_rad,"
-             "bore_work_J,contact_work_J,dissipated_J,balance_error_J,"
-             "relative_balance_error,max_penetration_um,wall_s,"
-             "angular_momentum_Nms";
+      return header(energy_columns());
     }
 
 
@@ -184,39 +169,14 @@ namespace cycloid
     {
       if (!active)
         return;
-      const double crank_deg = s.crank * u::deg_per_rad;
-      // (+ 0. turns a negative zero, e.g. of a zero-torque limit, into 0.)
-      stiffness << s.step << ',' << crank_deg << ',' << s.torque + 0. << ','
-                << s.rotation + 0. << ',' << s.k_secant() + 0. << ','
-                << s.k_tangent << ',' << s.pins_in_contact() << ','
-                << s.iterations << ',' << s.dofs << ',' << s.wall_s << ','
-                << s.k_secant() * u::rad_per_arcmin << ','
-                << s.k_tangent * u::rad_per_arcmin << ',' << s.takeup + 0.
-                << ',' << s.k_secant_elastic() << ',' << s.reaction_torque
-                << ',' << s.max_pin_force() << ',' << s.linear_iterations << ','
-                << s.peak_memory_MB << ','
-                << s.rotation * u::arcsec_per_rad + 0. << ','
-                << s.preconditioner_setups << ',' << s.error.k_secant << ','
-                << s.error.k_tangent << ',' << s.error.max_pin_force << ','
-                << (flag(s) ? 1 : 0) << ',' << max_pin_hertz_nodes(s) << ','
-                << results::resolution_error(s) << ',' << s.error.bulk << '\n';
+      write_row(stiffness,
+                stiffness_columns(),
+                StiffnessRow{s, flag(s), max_pin_hertz_nodes(s)});
       ++n_written;
       if (flag(s))
         ++n_flagged;
-      // (+ 0. turns a negative zero into 0 in the CSV.)
       for (const results::PinState &p : s.pins)
-        pin_forces << s.step << ',' << crank_deg << ',' << p.disc << ','
-                   << p.pin << ',' << p.fx + 0. << ',' << p.fy + 0. << ','
-                   << p.fn << ',' << p.arm << ',' << p.clearance * u::um_per_mm
-                   << ',' << p.phase * u::deg_per_rad << ','
-                   << p.approach * u::um_per_mm << ',' << p.pair_stiffness
-                   << ',' << p.contact_point[0] << ',' << p.contact_point[1]
-                   << ',' << p.contact_halfwidth * u::um_per_mm << ','
-                   << p.hertz_halfwidth * u::um_per_mm << ',' << p.max_pressure
-                   << ',' << p.hertz_pressure << ',' << p.max_shear_stress
-                   << ',' << p.max_shear_depth * u::um_per_mm << ','
-                   << p.fn_error << ',' << p.active_nodes << ','
-                   << p.hertz_nodes << '\n';
+        write_row(pin_forces, pin_force_columns(), PinRow{s, p});
       stiffness.flush();
       pin_forces.flush();
 
@@ -251,13 +211,7 @@ namespace cycloid
     {
       if (!active)
         return;
-      energy << e.step << ',' << e.time_s << ',' << e.kinetic << ','
-             << e.elastic << ',' << e.external << ',' << s.iterations << ','
-             << s.crank * u::deg_per_rad << ',' << s.torque << ',' << s.rotation
-             << ',' << e.bore_work << ',' << e.contact_work << ','
-             << e.dissipated << ',' << e.balance << ',' << e.relative_balance
-             << ',' << e.max_penetration_um << ',' << s.wall_s << ','
-             << e.angular_momentum << '\n';
+      write_row(energy, energy_columns(), EnergyRow{e, s});
       energy.flush();
     }
 
@@ -349,8 +303,8 @@ namespace cycloid
       std::cout << ". " << options.refine_advice << std::endl;
       if (s.error.bulk > 0.5 * options.warning_threshold)
         std::cout << "    The bulk mesh's part (" << pct(s.error.bulk)
-                  << ") is not reduced by contact refinements: " << results::bulk_advice
-                  << std::endl;
+                  << ") is not reduced by contact refinements: "
+                  << results::bulk_advice << std::endl;
     }
 
 
