@@ -273,3 +273,145 @@ TEST(Geometry, SeedBacklashIsClearanceAfterRigidTakeUp)
       EXPECT_NEAR(g.seed_backlash(phi_k), 0., 1e-14);
     }
 }
+
+
+
+// The stage as data (StageLayout): the nominal layout is the design, and
+// each pin's and disc's own data act on its own contacts only, as closed
+// forms say they must.
+
+TEST(StageLayout, NominalLayoutIsTheDesign)
+{
+  const GeometryParameters p;
+  const CycloidGeometry    g(p);
+  const StageLayout       &l  = g.layout();
+  const double             rp = g.pin_circle_radius();
+  ASSERT_EQ(l.pins.size(), p.n_pins);
+  ASSERT_EQ(l.discs.size(), 2u);
+  for (unsigned int j = 0; j < p.n_pins; ++j)
+    {
+      const double a = 2. * pi * j / p.n_pins;
+      EXPECT_NEAR(l.pins[j].centre[0], rp * std::cos(a), 1e-12);
+      EXPECT_NEAR(l.pins[j].centre[1], rp * std::sin(a), 1e-12);
+      EXPECT_EQ(g.pin_radius(j), p.pin_radius);
+    }
+  for (unsigned int d = 0; d < 2; ++d)
+    {
+      EXPECT_EQ(l.discs[d].eccentricity, p.eccentricity);
+      EXPECT_EQ(l.discs[d].crank_offset, d == 0 ? 0. : pi);
+      EXPECT_EQ(l.discs[d].index_angle, 0.);
+    }
+  // A geometry built from the nominal layout is the same geometry, bit
+  // for bit, at every pin.
+  const CycloidGeometry same(p, StageLayout::nominal(p));
+  for (const double psi : {0., 0.3, 2.1})
+    for (unsigned int d = 0; d < 2; ++d)
+      for (unsigned int j = 0; j < p.n_pins; ++j)
+        {
+          const PinContact a = g.pin_contact(d, j, psi);
+          const PinContact b = same.pin_contact(d, j, psi);
+          EXPECT_EQ(a.clearance, b.clearance);
+          EXPECT_EQ(a.arm, b.arm);
+        }
+}
+
+
+
+TEST(StageLayout, AMovedPinChangesItsOwnClearanceByItsNormalShift)
+{
+  // Moving a pin's centre by h along its contact normal changes its
+  // clearance by h (the closest point stays where it is), and no other
+  // pin's; a thicker pin loses its extra radius in clearance.
+  const GeometryParameters p = modified(0.01, 0.01);
+  const CycloidGeometry    nominal(p);
+  const double             psi = 0.4;
+  const unsigned int       k = 7, d = 1;
+  const PinContact         c = nominal.pin_contact(d, k, psi);
+  const double             h = 2e-3, dr = 3e-3;
+  StageLayout              moved = nominal.layout();
+  moved.pins[k].centre += h * c.normal;
+  moved.pins[k].radius += dr;
+  const CycloidGeometry g(p, moved);
+  EXPECT_NEAR(g.pin_contact(d, k, psi).clearance, c.clearance + h - dr, 1e-10);
+  for (unsigned int j = 0; j < p.n_pins; ++j)
+    if (j != k)
+      {
+        EXPECT_EQ(g.pin_contact(d, j, psi).clearance,
+                  nominal.pin_contact(d, j, psi).clearance);
+      }
+}
+
+
+
+TEST(StageLayout, AnIndexAngleClosesClearancesByItsArms)
+{
+  // A disc turned by eps about its centre closes each pin's clearance by
+  // eps times the pin's arm (the rigid take-up's law): the central
+  // difference of the clearance in eps is -arm; the other disc is
+  // untouched.
+  const GeometryParameters p = modified(0.01, 0.01);
+  const CycloidGeometry    nominal(p);
+  const double             psi = 1.1, eps = 1e-6;
+  StageLayout              ahead = nominal.layout(), behind = ahead;
+  ahead.discs[0].index_angle  = eps;
+  behind.discs[0].index_angle = -eps;
+  const CycloidGeometry g_ahead(p, ahead), g_behind(p, behind);
+  for (unsigned int j = 0; j < p.n_pins; ++j)
+    {
+      const PinContact c     = nominal.pin_contact(0, j, psi);
+      const double     slope = (g_ahead.pin_contact(0, j, psi).clearance -
+                            g_behind.pin_contact(0, j, psi).clearance) /
+                           (2. * eps);
+      EXPECT_NEAR(slope, -c.arm, 1e-5 * std::abs(c.arm) + 1e-6);
+      EXPECT_EQ(g_ahead.pin_contact(1, j, psi).clearance,
+                nominal.pin_contact(1, j, psi).clearance);
+    }
+}
+
+
+
+TEST(StageLayout, ADiscsOwnModificationsEqualTheGlobalOnes)
+{
+  // Disc 1 ground with other modifications than disc 0 has exactly the
+  // contacts of a stage whose file sets those modifications for both.
+  const GeometryParameters p0             = modified(0.01, 0.01);
+  const GeometryParameters p1             = modified(-0.005, 0.02, 0.01);
+  StageLayout              layout         = StageLayout::nominal(p0);
+  layout.discs[1].delta_pin_circle_radius = p1.delta_pin_circle_radius;
+  layout.discs[1].delta_pin_radius        = p1.delta_pin_radius;
+  layout.discs[1].rotation_modification   = p1.rotation_modification_rad;
+  const CycloidGeometry mixed(p0, layout), first(p0), second(p1);
+  for (const double psi : {0., 0.7})
+    for (unsigned int j = 0; j < p0.n_pins; ++j)
+      {
+        EXPECT_EQ(mixed.pin_contact(0, j, psi).clearance,
+                  first.pin_contact(0, j, psi).clearance);
+        EXPECT_EQ(mixed.pin_contact(1, j, psi).clearance,
+                  second.pin_contact(1, j, psi).clearance);
+      }
+}
+
+
+
+TEST(StageLayout, AnEccentricityErrorMovesTheDiscCentre)
+{
+  const GeometryParameters p;
+  StageLayout              layout = StageLayout::nominal(p);
+  layout.discs[1].eccentricity += 0.004;
+  const CycloidGeometry g(p, layout);
+  const double          psi = 0.25;
+  const Point<2>        c   = g.disc_centre(1, psi);
+  EXPECT_NEAR(c.norm(), p.eccentricity + 0.004, 1e-12);
+  EXPECT_NEAR(std::atan2(c[1], c[0]), psi + pi - 2. * pi, 1e-12);
+  EXPECT_EQ(g.disc_centre(0, psi), CycloidGeometry(p).disc_centre(0, psi));
+}
+
+
+
+TEST(StageLayout, ALayoutOfTheWrongSizeIsRefused)
+{
+  const GeometryParameters p;
+  StageLayout              layout = StageLayout::nominal(p);
+  layout.pins.pop_back();
+  EXPECT_THROW(CycloidGeometry(p, layout), dealii::ExceptionBase);
+}

@@ -49,6 +49,7 @@ namespace cycloid
     double
     stage_hertz_half_width(const double                          force,
                            const double                          rho,
+                           const double                          pin_radius,
                            const geometry::GeometryParameters   &geometry,
                            const parameters::MaterialParameters &material,
                            const parameters::SceneParameters    &scene)
@@ -57,7 +58,7 @@ namespace cycloid
         scene.pins == parameters::SceneParameters::PinModel::rigid;
       return hertz_half_width(force,
                               geometry.tooth_width,
-                              geometry.pin_radius,
+                              pin_radius,
                               rho,
                               material.disc.plane_strain_modulus(),
                               rigid ? 0. : material.pin.plane_strain_modulus());

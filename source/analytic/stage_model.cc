@@ -69,7 +69,7 @@ namespace cycloid
             p.contact                       = c;
             p.pair.phase                    = c.phase;
             p.pair.profile_curvature_radius = c.curvature_radius;
-            p.pair.pin_radius               = prm.geometry.pin_radius;
+            p.pair.pin_radius               = geo.pin_radius(c.pin);
             p.pair.disc_depth =
               disc_depth(geo.to_disc(d, psi, c.contact_point));
             pins.push_back(p);
@@ -107,6 +107,7 @@ namespace cycloid
           r.contact_point     = p.contact.contact_point;
           r.hertz_halfwidth   = stage_hertz_half_width(p.force,
                                                      p.contact.curvature_radius,
+                                                     p.pair.pin_radius,
                                                      prm.geometry,
                                                      prm.material,
                                                      prm.scene);

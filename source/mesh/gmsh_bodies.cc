@@ -63,6 +63,7 @@ namespace cycloid
           const double       lc          = settings.mesh.coarse_size;
           const unsigned int zc          = g.n_teeth;
           const unsigned int n_per_tooth = 24;
+          const auto        &profile     = geometry.disc_profile(d);
           const double       z0 = 0.; // sections at z = 0, extruded later
           std::vector<int>   tips(zc);
           for (unsigned int k = 0; k < zc; ++k)
@@ -70,7 +71,7 @@ namespace cycloid
               const auto p =
                 geometry.to_housing(d,
                                     psi,
-                                    geometry.profile(2. * pi * k - pi).point);
+                                    profile.profile(2. * pi * k - pi).point);
               tips[k] = geo::addPoint(p[0], p[1], z0, lc);
             }
           std::vector<int> teeth;
@@ -82,7 +83,7 @@ namespace cycloid
                   const double phi =
                     2. * pi * k - pi + 2. * pi * i / n_per_tooth;
                   const auto p =
-                    geometry.to_housing(d, psi, geometry.profile(phi).point);
+                    geometry.to_housing(d, psi, profile.profile(phi).point);
                   pts.push_back(geo::addPoint(p[0], p[1], z0, lc));
                 }
               pts.push_back(tips[(k + 1) % zc]);
@@ -121,7 +122,7 @@ namespace cycloid
           std::vector<int> curves;
           const auto       c = geometry.pin_centre(j);
           const int        outer =
-            add_circle(c, settings.geometry.pin_radius, 0., lc, curves);
+            add_circle(c, geometry.pin_radius(j), 0., lc, curves);
           const int core =
             add_circle(c, settings.scene.pin_core_radius, 0., lc, curves);
           Body body;
@@ -193,28 +194,32 @@ namespace cycloid
                            HousingFrame                    &frame,
                            Body                            &body)
         {
-          const auto        &g      = settings.geometry;
-          const auto        &m      = settings.mesh;
-          const double       lc     = m.coarse_size;
-          const double       rp     = frame.rp;
-          const double       half   = frame.half;
-          const unsigned int next   = (j + 1) % g.n_pins;
-          const double       a      = frame.pitch * j;
-          const auto         c      = geometry.pin_centre(j);
-          const int          centre = geo::addPoint(c[0], c[1], 0, lc);
-          const int          before = geo::addPoint(rp * std::cos(a - half),
+          const auto        &g    = settings.geometry;
+          const auto        &m    = settings.mesh;
+          const double       lc   = m.coarse_size;
+          const double       rp   = frame.rp;
+          const double       half = frame.half;
+          const unsigned int next = (j + 1) % g.n_pins;
+          // The groove's ends sit on the nominal pin circle (the housing is
+          // cut where the design puts the pins); its seat follows pin j
+          // as the layout has it.
+          const double a      = frame.pitch * j;
+          const auto   c      = geometry.pin_centre(j);
+          const int    centre = geo::addPoint(c[0], c[1], 0, lc);
+          const int    before = geo::addPoint(rp * std::cos(a - half),
                                            rp * std::sin(a - half),
                                            0,
                                            lc);
-          const int top   = geo::addPoint(c[0] + g.pin_radius * std::cos(a),
-                                        c[1] + g.pin_radius * std::sin(a),
+          const double r      = geometry.pin_radius(j);
+          const int    top    = geo::addPoint(c[0] + r * std::cos(a),
+                                        c[1] + r * std::sin(a),
                                         0,
                                         lc);
-          const int after = geo::addPoint(rp * std::cos(a + half),
+          const int    after  = geo::addPoint(rp * std::cos(a + half),
                                           rp * std::sin(a + half),
                                           0,
                                           lc);
-          const int arc0 =
+          const int    arc0 =
             geo::addCircleArc(frame.inner_pt[j], frame.origin, before);
           const int groove0 = geo::addCircleArc(before, centre, top);
           const int groove1 = geo::addCircleArc(top, centre, after);
@@ -224,7 +229,7 @@ namespace cycloid
                                               frame.origin,
                                               frame.outer_pt[j]);
           const double land          = rp * (0.5 * frame.pitch - half);
-          const double groove_length = g.pin_radius * (0.5 * pi + 0.5 * half);
+          const double groove_length = r * (0.5 * pi + 0.5 * half);
           auto        &transfinite   = frame.transfinite;
           transfinite.emplace_back(arc0, even_nodes(land, m.pin_size));
           transfinite.emplace_back(arc1, even_nodes(land, m.pin_size));
@@ -358,8 +363,10 @@ namespace cycloid
         std::vector<Circle> circles;
         if (ids::is_pin(m))
           {
-            const auto c = geometry.pin_centre(ids::pin_index(m));
-            circles = {{c, g.pin_radius}, {c, settings.scene.pin_core_radius}};
+            const unsigned int j = ids::pin_index(m);
+            const auto         c = geometry.pin_centre(j);
+            circles              = {{c, geometry.pin_radius(j)},
+                                    {c, settings.scene.pin_core_radius}};
           }
         else if (ids::is_disc(m))
           {
@@ -373,7 +380,8 @@ namespace cycloid
             circles = {{dealii::Point<2>(), rp},
                        {dealii::Point<2>(), rp + g.housing_thickness}};
             for (unsigned int j = 0; j < g.n_pins; ++j)
-              circles.push_back({geometry.pin_centre(j), g.pin_radius});
+              circles.push_back(
+                {geometry.pin_centre(j), geometry.pin_radius(j)});
           }
         return circles;
       }

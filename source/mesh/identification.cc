@@ -133,11 +133,13 @@ namespace cycloid
                  const Points      &pts,
                  const unsigned int j) const
         {
-          AssertThrow(
-            all_on_circle(pts, geometry.pin_centre(j), g.pin_radius, tol),
-            dealii::ExcMessage("mesh: a boundary face of pin " +
-                               std::to_string(j) +
-                               " is not on the pin's cylinder."));
+          AssertThrow(all_on_circle(pts,
+                                    geometry.pin_centre(j),
+                                    geometry.pin_radius(j),
+                                    tol),
+                      dealii::ExcMessage("mesh: a boundary face of pin " +
+                                         std::to_string(j) +
+                                         " is not on the pin's cylinder."));
           face->set_boundary_id(ids::pin_surface);
           face->set_all_manifold_ids(ids::pin_manifold(j));
         }
@@ -159,7 +161,8 @@ namespace cycloid
           face->set_boundary_id(ids::housing_inner);
           face->set_all_manifold_ids(ids::housing_manifold);
           for (unsigned int j = 0; j < g.n_pins; ++j)
-            if (all_on_circle(pts, geometry.pin_centre(j), g.pin_radius, tol))
+            if (all_on_circle(
+                  pts, geometry.pin_centre(j), geometry.pin_radius(j), tol))
               {
                 face->set_boundary_id(ids::housing_seat);
                 face->set_all_manifold_ids(ids::pin_manifold(j));
@@ -224,12 +227,11 @@ namespace cycloid
                   }
                 else if (b == ids::pin_surface)
                   {
-                    face->vertex(v) =
-                      project_to_circle(face->vertex(v),
-                                        geometry.pin_centre(
-                                          ids::pin_index(cell->material_id())),
-                                        settings.geometry.pin_radius);
-                    moved[index] = true;
+                    const unsigned int j = ids::pin_index(cell->material_id());
+                    face->vertex(v)      = project_to_circle(face->vertex(v),
+                                                        geometry.pin_centre(j),
+                                                        geometry.pin_radius(j));
+                    moved[index]         = true;
                   }
               }
           }

@@ -55,7 +55,8 @@ namespace cycloid
     {
       const dealii::Point<2> q =
         geometry.to_disc(disc, psi, dealii::Point<2>(x[0], x[1]));
-      double phi = std::fmod(geometry.closest_point(q).phi, period);
+      double phi =
+        std::fmod(geometry.disc_profile(disc).closest_point(q).phi, period);
       if (phi < 0)
         phi += period;
       dealii::Point<dim - 1> chart;
@@ -72,8 +73,8 @@ namespace cycloid
     CycloidProfileManifold<dim>::push_forward(
       const dealii::Point<dim - 1> &chart) const
     {
-      const dealii::Point<2> p =
-        geometry.to_housing(disc, psi, geometry.profile(chart[0]).point);
+      const dealii::Point<2> p = geometry.to_housing(
+        disc, psi, geometry.disc_profile(disc).profile(chart[0]).point);
       dealii::Point<dim> x;
       x[0] = p[0];
       x[1] = p[1];

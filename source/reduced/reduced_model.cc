@@ -21,13 +21,14 @@ namespace cycloid
     {
       const dealii::Point<2> q =
         geo.to_disc(c.disc, psi, geo.pin_centre(c.pin));
-      const double phi0 = geo.closest_point(q).phi;
+      const geometry::DiscProfile &profile = geo.disc_profile(c.disc);
+      const double                 phi0    = profile.closest_point(q).phi;
       // Gap G and arm L of the flank point at profile parameter phi, with
       // the rigid rotation linearised as in the FE model (small
       // displacements: each flank point closes on the pin by beta times
       // the arm of the line from it to the pin centre).
-      const auto gap_arm = [&geo, &q](const double phi) {
-        const dealii::Point<2>     x = geo.profile(phi).point;
+      const auto gap_arm = [&profile, &q](const double phi) {
+        const dealii::Point<2>     x = profile.profile(phi).point;
         const dealii::Tensor<1, 2> d = q - x;
         const dealii::Tensor<1, 2> n = d / d.norm();
         return std::make_pair(d.norm(), x[0] * n[1] - x[1] * n[0]);
@@ -221,7 +222,6 @@ namespace cycloid
       const double body_compliance =
         1. / m.disc.plane_strain_modulus() +
         (rigid ? 0. : 1. / m.pin.plane_strain_modulus());
-      const double r = settings.stage.geometry.pin_radius;
       // 2D: the FE model is per unit thickness, loaded by 1 N/mm; a force
       // F over the tooth width b is the line load F / b.
       const double scale =
@@ -240,7 +240,8 @@ namespace cycloid
                                    points[i].z_max - points[i].z_min;
           p.law       = LocalContact(settings.load_half_width(),
                                body_compliance,
-                               1. / r - (std::isfinite(rho) ? 1. / rho : 0.));
+                               1. / pin.pair.pin_radius -
+                                 (std::isfinite(rho) ? 1. / rho : 0.));
           p.rigid_gap = rigid_gap(pin.contact);
           pairs.push_back(p);
         }

@@ -283,7 +283,8 @@ namespace cycloid
               // The files first: the record lists only files that exist.
               if (s.write_solution && !cycle_zero(s.loading, loads, t))
                 {
-                  const std::string name = postprocess::SolutionRecord::name(state.step);
+                  const std::string name =
+                    postprocess::SolutionRecord::name(state.step);
                   scene->output_results(name);
                   pieces.add(state.step, name + ".pvtu");
                 }

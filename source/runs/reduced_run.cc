@@ -164,7 +164,7 @@ namespace cycloid
               state.step                = step;
               state.wall_s              = seconds_since(start_state) + setup_s;
               setup_s                   = 0;
-              state.peak_memory_MB = results::peak_memory_MB(comm);
+              state.peak_memory_MB      = results::peak_memory_MB(comm);
               report.write(state, torques[t]);
               if (root && show_state(k, angles.size(), t, torques.size()))
                 report.print(state,

@@ -216,11 +216,11 @@ namespace cycloid
 
     template <int dim>
     void
-    TransientRun<dim>::print_progress(const unsigned int            step,
-                                      const unsigned int            first,
-                                      const results::StageState    &s,
+    TransientRun<dim>::print_progress(const unsigned int          step,
+                                      const unsigned int          first,
+                                      const results::StageState  &s,
                                       const results::EnergyState &e,
-                                      const double elapsed) const
+                                      const double                elapsed) const
     {
       const double remaining =
         elapsed / (step - first) * (time.last_step() - step);

@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+
 #include <deal.II/base/mpi.h>
 
 #include <deal.II/grid/tria_accessor.h>
@@ -181,14 +182,15 @@ namespace cycloid
               std::ostringstream message;
               e.print_info(message);
               out.level_failure = trimmed(message.str());
-              solved         = false;
+              solved            = false;
             }
           catch (const std::exception &e)
             {
               out.level_failure = trimmed(e.what());
-              solved         = false;
+              solved            = false;
             }
-          dealii::TimerOutput::Scope t(scene.timer(), "error estimate: coarsen");
+          dealii::TimerOutput::Scope t(scene.timer(),
+                                       "error estimate: coarsen");
           if (!solved)
             {
               for (unsigned int j = k + 1; j-- > 0;)
@@ -210,7 +212,7 @@ namespace cycloid
     template <int dim>
     bool
     ErrorControlLoop<dim>::solve_bulk_level(const double         load,
-                                      results::StageState &bulk)
+                                            results::StageState &bulk)
     {
       const auto n_cells  = tria.n_global_active_cells();
       const auto original = scene.contact_problem().active_set_snapshot();
@@ -224,7 +226,8 @@ namespace cycloid
       const unsigned int       seen = mesh::ErrorControl::coarser_levels;
       std::set<dealii::CellId> refined;
       {
-        dealii::TimerOutput::Scope t(scene.timer(), "error estimate: bulk refine");
+        dealii::TimerOutput::Scope t(scene.timer(),
+                                     "error estimate: bulk refine");
         for (const auto &cell : tria.active_cell_iterators())
           if (!cell->is_artificial() &&
               static_cast<unsigned int>(cell->level()) + seen <= top)
@@ -252,9 +255,10 @@ namespace cycloid
       catch (const std::exception &e)
         {
           out.level_failure = trimmed(e.what());
-          solved         = false;
+          solved            = false;
         }
-      dealii::TimerOutput::Scope t(scene.timer(), "error estimate: bulk refine");
+      dealii::TimerOutput::Scope t(scene.timer(),
+                                   "error estimate: bulk refine");
       // Back to the mesh asked for: coarsen the children of the cells
       // refined above.
       for (const auto &cell : tria.active_cell_iterators())
@@ -275,7 +279,7 @@ namespace cycloid
     template <int dim>
     std::optional<results::BulkError>
     ErrorControlLoop<dim>::measure_bulk_error(const double               load,
-                                        const results::StageState &fine)
+                                              const results::StageState &fine)
     {
       results::StageState refined;
       if (solve_bulk_level(load, refined))
@@ -306,11 +310,14 @@ namespace cycloid
       const std::string stop    = out.memory_stop;
       const std::string failure = out.level_failure;
       const auto        bulk    = measure_bulk_error(load, fine);
-      out.memory_stop               = stop;
-      out.level_failure            = failure;
+      out.memory_stop           = stop;
+      out.level_failure         = failure;
       if (!bulk)
         return;
-      results::set_error_estimate(levels[0], levels[1], fine, scene.contact_level());
+      results::set_error_estimate(levels[0],
+                                  levels[1],
+                                  fine,
+                                  scene.contact_level());
       results::add_bulk_error(*bulk, fine);
     }
 
@@ -319,8 +326,8 @@ namespace cycloid
     template <int dim>
     bool
     ErrorControlLoop<dim>::refine_again(const unsigned int         cycle,
-                                  const bool                 have_coarse,
-                                  const results::StageState &fine) const
+                                        const bool                 have_coarse,
+                                        const results::StageState &fine) const
     {
       const auto &m = mesh;
       if (cycle < m.adaptive_cycles)
@@ -482,8 +489,8 @@ namespace cycloid
       if (s.error.largest() > target && s.error.bulk > 0.5 * target)
         pcout << "  the bulk mesh's part of the estimate is " << s.error.bulk
               << ": the target's cycles refine at the "
-              << "contacts and do not reduce it; "
-              << results::bulk_advice << std::endl;
+              << "contacts and do not reduce it; " << results::bulk_advice
+              << std::endl;
     }
 
 

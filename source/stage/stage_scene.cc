@@ -191,7 +191,7 @@ namespace cycloid
       std::vector<contact::MasterCylinder> pins(settings.geometry.n_pins);
       for (unsigned int j = 0; j < pins.size(); ++j)
         pins[j] = {geo.pin_centre(j),
-                   settings.geometry.pin_radius,
+                   geo.pin_radius(j),
                    ids::pin(j),
                    ids::pin_surface};
       contact->set_contact(discs, ids::flank, pins, pin_model->deformable());
@@ -517,15 +517,14 @@ namespace cycloid
     StateBuilder<dim>
     StageScene<dim>::state_builder() const
     {
-      return StateBuilder<dim>(
-        {settings.geometry,
-         settings.material,
-         settings.scene,
-         psi,
-         psi_mesh,
-         width_scale()},
-        geo,
-        *contact);
+      return StateBuilder<dim>({settings.geometry,
+                                settings.material,
+                                settings.scene,
+                                psi,
+                                psi_mesh,
+                                width_scale()},
+                               geo,
+                               *contact);
     }
 
 
@@ -558,7 +557,7 @@ namespace cycloid
         const FirstSetReach &r = reach[s.body * zp + s.cylinder];
         const double         a =
           angle_about(s.position, geo.pin_centre(s.cylinder), r.angle);
-        return settings.geometry.pin_radius * std::abs(a) <= r.arc;
+        return geo.pin_radius(s.cylinder) * std::abs(a) <= r.arc;
       });
     }
 
@@ -588,7 +587,7 @@ namespace cycloid
           r.angle                  = angle_about(p.contact_point, c, 0.);
           const double h =
             builder.flank_node_spacing(p.disc, p.pin, p.contact_point);
-          r.arc          = std::max(p.hertz_halfwidth + 0.5 * h, h);
+          r.arc = std::max(p.hertz_halfwidth + 0.5 * h, h);
         }
       return reach;
     }

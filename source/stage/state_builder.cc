@@ -17,10 +17,9 @@ namespace cycloid
 
 
     template <int dim>
-    StateBuilder<dim>::StateBuilder(
-      const StateBuilderSettings         &settings,
-      const geometry::CycloidGeometry    &geo,
-      const contact::ContactProblem<dim> &contact)
+    StateBuilder<dim>::StateBuilder(const StateBuilderSettings      &settings,
+                                    const geometry::CycloidGeometry &geo,
+                                    const contact::ContactProblem<dim> &contact)
       : settings(settings)
       , geo(geo)
       , contact(contact)
@@ -52,11 +51,11 @@ namespace cycloid
     StateBuilder<dim>::state(const contact::ContactState &result,
                              const double                 torque) const
     {
-      results::StageState s   = empty_state();
-      s.torque                = torque;
-      s.rotation              = result.beta;
-      s.k_tangent             = result.tangent * settings.width_scale * u::Nm_per_Nmm;
-      s.iterations            = result.iterations;
+      results::StageState s = empty_state();
+      s.torque              = torque;
+      s.rotation            = result.beta;
+      s.k_tangent  = result.tangent * settings.width_scale * u::Nm_per_Nmm;
+      s.iterations = result.iterations;
       s.linear_iterations     = result.linear_iterations;
       s.preconditioner_setups = result.preconditioner_setups;
       s.cycles_broken         = result.cycles_broken;
@@ -111,7 +110,8 @@ namespace cycloid
 
     template <int dim>
     void
-    StateBuilder<dim>::sum_pin_forces(std::vector<results::PinState> &pins) const
+    StateBuilder<dim>::sum_pin_forces(
+      std::vector<results::PinState> &pins) const
     {
       const unsigned int  zp        = settings.geometry.n_pins;
       const double        scale     = settings.width_scale;
@@ -168,6 +168,7 @@ namespace cycloid
             p.hertz_halfwidth =
               analytic::stage_hertz_half_width(p.fn,
                                                pc.curvature_radius,
+                                               geo.pin_radius(pc.pin),
                                                settings.geometry,
                                                settings.material,
                                                settings.scene);
@@ -259,7 +260,7 @@ namespace cycloid
             std::min(spacing, std::min(std::abs(a - hi), std::abs(a - lo)));
       if (spacing > 1e200)
         spacing = 0;
-      return settings.geometry.pin_radius * (0.5 * (hi - lo) + 0.5 * spacing);
+      return geo.pin_radius(j) * (0.5 * (hi - lo) + 0.5 * spacing);
     }
 
 
@@ -296,7 +297,7 @@ namespace cycloid
         gap = std::min(gap, *nearest - *std::prev(nearest));
       if (std::next(nearest) != a.end())
         gap = std::min(gap, *std::next(nearest) - *nearest);
-      return settings.geometry.pin_radius * gap;
+      return geo.pin_radius(j) * gap;
     }
 
 

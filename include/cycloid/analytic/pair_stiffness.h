@@ -51,11 +51,13 @@ namespace cycloid
      * @brief Hertz half-width [mm] of a pin of the stage against the disc
      * profile of signed curvature radius @p profile_curvature_radius [mm]
      * at force @p force [N]: hertz_half_width() with the stage's tooth
-     * width, pin radius and moduli (rigid pins add no compliance).
+     * width and moduli and the pin's radius @p pin_radius [mm] (rigid
+     * pins add no compliance).
      */
     double
     stage_hertz_half_width(const double force,
                            const double profile_curvature_radius,
+                           const double pin_radius,
                            const geometry::GeometryParameters   &geometry,
                            const parameters::MaterialParameters &material,
                            const parameters::SceneParameters    &scene);

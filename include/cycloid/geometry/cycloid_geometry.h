@@ -5,6 +5,10 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <cycloid/geometry/disc_profile.h>
+#include <cycloid/geometry/geometry_parameters.h>
+#include <cycloid/geometry/stage_layout.h>
+
 #include <optional>
 #include <set>
 #include <string>
@@ -16,127 +20,6 @@ namespace cycloid
   {
     using dealii::Point;
     using dealii::Tensor;
-
-    /**
-     * @brief Geometry parameters of the cycloid-pin stage (subsection
-     * `Geometry` of the parameter file). Lengths in mm, angles in degrees
-     * in the file, radians in the members whose name ends in `_rad`.
-     *
-     * The number of cycloid teeth, the bore, the crank holes and the
-     * housing wall default to `auto`: sizes derived from the tooth geometry
-     * (apply_auto_sizes()), so that a file that sets only the tooth
-     * geometry of another reducer describes a disc that fits. For the seed
-     * geometry the auto sizes are exactly the member defaults below.
-     */
-    struct GeometryParameters
-    {
-      /** Which entries were `auto` in the parameter file (their members
-       * hold the derived values). A value given in code counts as set. */
-      struct Automatic
-      {
-        bool n_teeth                  = false; ///< Number of cycloid teeth.
-        bool bore_radius              = false; ///< Bore radius.
-        bool crank_hole_radius        = false; ///< Crank hole radius.
-        bool crank_hole_circle_radius = false; ///< Crank hole circle radius.
-        bool housing_thickness        = false; ///< Housing wall thickness.
-      };
-
-
-      /** Number of pins zp. */
-      unsigned int n_pins = 40;
-      /** Number of cycloid teeth zc; must equal zp - 1. */
-      unsigned int n_teeth = 39;
-      /** Pin radius rrp [mm]. */
-      double pin_radius = 3.0;
-      /** Eccentricity e [mm]. */
-      double eccentricity = 2.2;
-      /** Shortening coefficient K1 = e zp / rp (0 < K1 < 1). */
-      double shortening_coefficient = 0.675;
-      /** Tooth (disc) width b [mm]. */
-      double tooth_width = 16.0;
-      /** Pin circle radius modification Delta rp [mm]. */
-      double delta_pin_circle_radius = 0.0;
-      /** Pin radius modification Delta rrp [mm]. */
-      double delta_pin_radius = 0.0;
-      /** Rotation modification delta [rad]. */
-      double rotation_modification_rad = 0.0;
-      /** Radius of the central bore [mm]. */
-      double bore_radius = 25.0;
-      /** Number of crank-shaft holes in each disc (0 allowed). */
-      unsigned int n_crank_holes = 3;
-      /** Radius of each crank hole [mm]. */
-      double crank_hole_radius = 15.0;
-      /** Radius of the circle through the crank-hole centres [mm]. */
-      double crank_hole_circle_radius = 65.0;
-      /** Axial gap between the two discs of a 3D scene [mm]. */
-      double axial_gap = 2.0;
-      /** Radial wall thickness of the pin housing outside the pin circle
-       * [mm]: the housing ring spans rp ... rp + this. */
-      double housing_thickness = 15.0;
-
-      /** The entries that were `auto`. */
-      Automatic automatic;
-      /**
-       * The entries of subsection `Geometry` that the parameter file sets
-       * (app::AllParameters::read() fills it); empty optional when unknown
-       * (parameters made in code). An error about an entry the file does
-       * not set says that the value is a default.
-       */
-      std::optional<std::set<std::string>> set_in_file;
-
-      /** Declare the entries of subsection `Geometry`. */
-      static void
-      declare_parameters(dealii::ParameterHandler &prm);
-
-      /** Read subsection `Geometry`; throws with the entry's name on a bad
-       * value that the pattern alone cannot catch. */
-      void
-      parse_parameters(dealii::ParameterHandler &prm);
-
-      /**
-       * Set the members flagged in #automatic from the tooth geometry:
-       * zc = zp - 1; bore, crank-hole radius and crank-hole circle radius
-       * are the seed's 25, 15 and 65 mm scaled by the ratio of the nominal
-       * root radius rp - e - rrp (rp = e zp / K1) to the seed's
-       * (125.170 mm); the housing wall is the seed's 15 mm scaled by
-       * rp / 130.370 mm, at least 2.5 rrp. The ratios are 1 for the seed
-       * geometry, so its auto sizes are exactly 25, 15, 65 and 15 mm; for
-       * any other reducer the holes keep the seed's proportions to the
-       * root circle (bore 0.200 root radii, ligaments bore to holes 0.200
-       * and holes to root 0.361 root radii) and pass CycloidGeometry's
-       * checks.
-       */
-      void
-      apply_auto_sizes();
-
-      /** Whether the parameter file is known to leave entry @p name of
-       * subsection `Geometry` at its default. */
-      bool
-      left_at_default(const std::string &name) const;
-    };
-
-    /**
-     * @brief A point of the (modified) cycloid profile with its local
-     * differential geometry, in the disc frame (disc centre at the origin).
-     */
-    struct ProfilePoint
-    {
-      /** Profile parameter phi [rad] (the generating phase). */
-      double phi;
-      /** Position [mm]. */
-      Point<2> point;
-      /** Derivative d point / d phi [mm/rad]. */
-      Tensor<1, 2> derivative;
-      /** Unit normal pointing out of the disc (towards the pins). */
-      Tensor<1, 2> normal;
-      /**
-       * Signed radius of curvature [mm]: positive where the profile is
-       * concave (centre of curvature outside the disc, the tooth root),
-       * negative where it is convex (the tooth tip). Infinite at an
-       * inflection point.
-       */
-      double curvature_radius;
-    };
 
     /**
      * @brief Contact geometry of one pin against one disc in the assembled,
@@ -174,37 +57,31 @@ namespace cycloid
     };
 
     /**
-     * @brief Exact geometry of the cycloid-pin stage: the standard and
-     * modified cycloid profile as a parametric curve with tangents, normals
-     * and curvature, the kinematic assembly of one or two discs at a crank
-     * angle, and per-pin contact quantities found by a closest-point search.
+     * @brief Exact geometry of the cycloid-pin stage: the stage as data
+     * (StageLayout: every pin and every disc), each disc's profile
+     * (DiscProfile), the kinematic assembly of the discs at a crank angle,
+     * and per-pin contact quantities found by a closest-point search.
      *
-     * The profile in the disc frame (doc/design-basis.md §2.1, seed eq. with
-     * `phi^-1(K1,phi)` read as S^-1/2) is
-     * @f[
-     *   P(\phi) = R e^{i\alpha} - e\,e^{-i\gamma}
-     *             - r\,\frac{u(\phi)}{\sqrt{S}}, \quad
-     *   u = e^{i\alpha} - K e^{-i\gamma},\quad |u|^2 = S = 1 + K^2 - 2K\cos\phi
-     * @f]
-     * with @f$\alpha = (1-i_H)\phi@f$, @f$\gamma = i_H\phi@f$,
-     * @f$R = r_p+\Delta r_p@f$, @f$r = r_{rp}+\Delta r_{rp}@f$,
-     * @f$K = e z_p/R@f$, and the whole curve turned by @f$-\delta@f$ (the
-     * seed's sign). The first two terms are the pin-centre curve (an
-     * epitrochoid) and @f$u/\sqrt S@f$ is its unit outward normal, so the
-     * profile is the inner parallel curve of the pin-centre curve at
-     * distance r. One tooth spans 2 pi in phi; the closed profile spans
-     * [0, 2 pi zc).
-     *
-     * Assembly (doc/design-basis.md §2.2): pin j at rp (cos 2 pi j/zp, sin 2 pi
-     * j/zp); disc 0 centred at e (cos psi, sin psi) and turned by -psi/zc; disc
-     * 1 at crank angle psi + pi.
+     * Assembly (doc/design-basis.md §2.2): pin j where the layout puts it
+     * (nominally rp (cos 2 pi j/zp, sin 2 pi j/zp)); disc d centred at
+     * e_d (cos(psi + o_d), sin(psi + o_d)) with its crank offset o_d (0 and
+     * pi) and turned by -(psi + o_d)/zc plus its index angle (nominally
+     * 0). The profile functions without a disc argument are disc 0's;
+     * a layout whose discs have their own modifications is read through
+     * disc_profile().
      */
     class CycloidGeometry
     {
     public:
-      /** Build from parameters; validates them and throws
-       * dealii::ExcMessage naming the offending parameter. */
+      /** The nominal stage of @p parameters (StageLayout::nominal());
+       * validates them and throws dealii::ExcMessage naming the offending
+       * parameter. */
       explicit CycloidGeometry(const GeometryParameters &parameters);
+
+      /** The stage designed by @p parameters as @p layout has it: pins and
+       * discs where and as they really are. Validates as above. */
+      CycloidGeometry(const GeometryParameters &parameters,
+                      const StageLayout        &layout);
 
       /** @name Derived quantities */
       /** @{ */
@@ -226,50 +103,72 @@ namespace cycloid
       {
         return i_h;
       }
-      /** Shortening coefficient of the modified profile K = e zp/(rp+Delta rp).
-       */
+      /** The stage as data: every pin and disc. */
+      const StageLayout &
+      layout() const
+      {
+        return stage;
+      }
+      /** The profile of disc @p disc. */
+      const DiscProfile &
+      disc_profile(const unsigned int disc) const
+      {
+        return profiles[disc];
+      }
+      /** Shortening coefficient of the modified profile K = e zp/(rp+Delta rp)
+       * (disc 0). */
       double
       modified_shortening_coefficient() const
       {
-        return k_mod;
+        return profiles[0].modified_shortening_coefficient();
       }
-      /** Smallest radius of the modified profile (tooth root) [mm]. */
+      /** Smallest radius of the modified profile (tooth root) [mm] (disc
+       * 0). */
       double
-      root_radius() const;
-      /** Largest radius of the modified profile (tooth tip) [mm]. */
+      root_radius() const
+      {
+        return profiles[0].root_radius();
+      }
+      /** Largest radius of the modified profile (tooth tip) [mm] (disc 0). */
       double
-      tip_radius() const;
+      tip_radius() const
+      {
+        return profiles[0].tip_radius();
+      }
       /** Crank angle period of the meshing, 2 pi / zp [rad]. */
       double
       mesh_period() const;
       /** @} */
 
-      /** @name Profile in the disc frame */
+      /** @name Profile of disc 0 in the disc frame (DiscProfile) */
       /** @{ */
-      /** Point, derivative, outward normal and curvature at parameter phi. */
+      /** DiscProfile::profile() of disc 0. */
       ProfilePoint
-      profile(const double phi) const;
+      profile(const double phi) const
+      {
+        return profiles[0].profile(phi);
+      }
 
-      /** Second derivative d^2 P / d phi^2 [mm/rad^2]. */
+      /** DiscProfile::profile_second_derivative() of disc 0. */
       Tensor<1, 2>
-      profile_second_derivative(const double phi) const;
+      profile_second_derivative(const double phi) const
+      {
+        return profiles[0].profile_second_derivative(phi);
+      }
 
-      /**
-       * Closest point of the profile to @p q (disc frame) by a real search:
-       * coarse sampling of a window of one and a half teeth around the polar
-       * angle of q, then a safeguarded Newton iteration on
-       * d|P(phi)-q|^2/dphi = 0. Does not use any kinematic knowledge of
-       * where q came from.
-       */
+      /** DiscProfile::closest_point() of disc 0. */
       ProfilePoint
-      closest_point(const Point<2> &q) const;
+      closest_point(const Point<2> &q) const
+      {
+        return profiles[0].closest_point(q);
+      }
 
-      /**
-       * Signed distance of @p q from the profile [mm]: positive outside the
-       * disc, negative inside; @p closest receives the closest point.
-       */
+      /** DiscProfile::signed_distance() of disc 0. */
       double
-      signed_distance(const Point<2> &q, ProfilePoint *closest = nullptr) const;
+      signed_distance(const Point<2> &q, ProfilePoint *closest = nullptr) const
+      {
+        return profiles[0].signed_distance(q, closest);
+      }
       /** @} */
 
       /** @name Assembly in the housing frame */
@@ -286,14 +185,18 @@ namespace cycloid
                         const unsigned int k,
                         const double       psi) const;
 
-      /** Centre of pin @p j [mm]. */
+      /** Centre of pin @p j [mm], from the layout. */
       Point<2>
       pin_centre(const unsigned int j) const;
 
+      /** Radius of pin @p j [mm], from the layout. */
+      double
+      pin_radius(const unsigned int j) const;
+
       /** Crank angle [rad] that places disc @p disc when the crank is at
-       * @p psi (disc 1 runs half a turn ahead). */
-      static double
-      disc_crank_angle(const unsigned int disc, const double psi);
+       * @p psi (disc 1 runs half a turn ahead: its crank offset). */
+      double
+      disc_crank_angle(const unsigned int disc, const double psi) const;
 
       /** Centre of disc @p disc at crank angle @p psi [mm]. */
       Point<2>
@@ -332,72 +235,61 @@ namespace cycloid
       pitch_point(const unsigned int disc, const double psi) const;
       /** @} */
 
-      /** @name Closed forms (used for checks and by the seed's model) */
+      /** @name Closed forms of disc 0's profile (DiscProfile) */
       /** @{ */
-      /** S(phi) = 1 + K^2 - 2 K cos phi with the modified K. */
+      /** DiscProfile::s_function() of disc 0. */
       double
-      s_function(const double phi) const;
-
-      /** Curvature radius of the standard profile from the textbook closed
-       * form rho = rp S^{3/2} / (K1 (1+zp) cos phi - (1 + zp K1^2)) + rrp
-       * (positive concave); evaluated with the modified R, r and K. */
+      s_function(const double phi) const
+      {
+        return profiles[0].s_function(phi);
+      }
+      /** DiscProfile::closed_form_curvature_radius() of disc 0. */
       double
-      closed_form_curvature_radius(const double phi) const;
-
-      /**
-       * First-order normal clearance of a pin at generating phase phi due to
-       * the modifications Delta rp, Delta rrp (no rotation modification):
-       * Delta rrp - Delta rp (1 - K cos phi) / sqrt(S).
-       */
+      closed_form_curvature_radius(const double phi) const
+      {
+        return profiles[0].closed_form_curvature_radius(phi);
+      }
+      /** DiscProfile::first_order_clearance() of disc 0. */
       double
-      first_order_clearance(const double phi) const;
-
-      /**
-       * The seed article's backlash formula
-       * Delta(phi) = Delta rrp (1 - sin phi/sqrt S)
-       *   - Delta rp (1 - K cos phi - sqrt(1-K^2) sin phi)/sqrt S.
-       * It equals first_order_clearance() minus the rigid take-up
-       * rotation that closes the clearance of the pin at cos phi = K (see
-       * doc/analytic-model.md).
-       */
+      first_order_clearance(const double phi) const
+      {
+        return profiles[0].first_order_clearance(phi);
+      }
+      /** DiscProfile::seed_backlash() of disc 0. */
       double
-      seed_backlash(const double phi) const;
-
-      /** Moment arm about the disc centre from the closed form
-       * l = e zc sin(phi) / sqrt(S) (standard profile). */
+      seed_backlash(const double phi) const
+      {
+        return profiles[0].seed_backlash(phi);
+      }
+      /** DiscProfile::closed_form_arm() of disc 0. */
       double
-      closed_form_arm(const double phi) const;
+      closed_form_arm(const double phi) const
+      {
+        return profiles[0].closed_form_arm(phi);
+      }
+      /** DiscProfile::undercut_margin() of disc 0. */
+      double
+      undercut_margin() const
+      {
+        return profiles[0].undercut_margin();
+      }
       /** @} */
 
-      /** Smallest |curvature radius| of the pin-centre curve on its convex
-       * part minus the generating radius r [mm]; the profile undercuts
-       * (curvature radius passes through zero) when this is <= 0. */
-      double
-      undercut_margin() const;
-
     private:
-      /** Validate parameters (throws). */
+      /** Validate parameters and profiles (throws). */
       void
       validate() const;
 
-      /** Unrotated profile point and derivatives (before the turn by
-       * -delta). */
-      void
-      evaluate(const double  phi,
-               Tensor<1, 2> &p,
-               Tensor<1, 2> &dp,
-               Tensor<1, 2> &ddp,
-               Tensor<1, 2> &normal) const;
-
       const GeometryParameters prm;
+      /** The pins and discs as they are. */
+      const StageLayout stage;
+      /** Each disc's profile, disc d at index d. */
+      std::vector<DiscProfile> profiles;
       const unsigned int       zp;
       const unsigned int       zc;
-      const double             rp;
-      const double             i_h;
-      const double             big_r;
-      const double             small_r;
-      const double             k_mod;
-      const double             delta;
+      /** Nominal pin circle radius e zp / K1 [mm]. */
+      const double rp;
+      const double i_h;
     };
   } // namespace geometry
 } // namespace cycloid

@@ -78,8 +78,8 @@ namespace cycloid
     public:
       /** The control of @p scene's next state, under the mesh entries
        * @p mesh, printing to @p pcout. */
-      ErrorControlLoop(StageScene<dim>                &scene,
-                       const mesh::MeshParameters     &mesh,
+      ErrorControlLoop(StageScene<dim>                  &scene,
+                       const mesh::MeshParameters       &mesh,
                        const dealii::ConditionalOStream &pcout);
 
       /** Solve the load @p load (as StageScene::solve_level() takes it)
@@ -106,8 +106,7 @@ namespace cycloid
       /** The bulk mesh's error of @p fine: from solve_bulk_level(), or
        * none (the console says why). */
       std::optional<results::BulkError>
-      measure_bulk_error(const double               load,
-                         const results::StageState &fine);
+      measure_bulk_error(const double load, const results::StageState &fine);
       /** After the target's cycles: measure the bulk part again on the
        * mesh @p fine was solved on, and give @p fine its contact levels'
        * estimate (from the two coarser @p levels) plus that part. */
@@ -154,11 +153,11 @@ namespace cycloid
       void
       report_accuracy(const results::StageState &s) const;
 
-      StageScene<dim>                            &scene;
-      const mesh::MeshParameters                 &mesh;
-      const dealii::ConditionalOStream           &pcout;
-      dealii::parallel::TriangulationBase<dim>   &tria;
-      const MPI_Comm                              comm;
+      StageScene<dim>                          &scene;
+      const mesh::MeshParameters               &mesh;
+      const dealii::ConditionalOStream         &pcout;
+      dealii::parallel::TriangulationBase<dim> &tria;
+      const MPI_Comm                            comm;
       /** What the state returns, filled as the control goes. */
       ControlledState out;
     };

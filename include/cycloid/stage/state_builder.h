@@ -72,8 +72,8 @@ namespace cycloid
     public:
       /** A builder over the contact problem @p contact, whose slave nodes
        * belong to the stage of @p geo as @p settings place it. */
-      StateBuilder(const StateBuilderSettings      &settings,
-                   const geometry::CycloidGeometry &geo,
+      StateBuilder(const StateBuilderSettings         &settings,
+                   const geometry::CycloidGeometry    &geo,
                    const contact::ContactProblem<dim> &contact);
 
       /**
