@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -22,18 +21,7 @@ namespace cycloid
   {
     namespace
     {
-      using complex = std::complex<double>;
-
       constexpr double pi = dealii::numbers::PI;
-
-      inline Tensor<1, 2>
-      to_tensor(const complex &z)
-      {
-        Tensor<1, 2> t;
-        t[0] = z.real();
-        t[1] = z.imag();
-        return t;
-      }
 
       inline double
       cross(const Tensor<1, 2> &a, const Tensor<1, 2> &b)
