@@ -382,7 +382,20 @@ namespace cycloid
 
 
 
-    template class LinearElasticity<2>;
-    template class LinearElasticity<3>;
+    // The members this file defines, for both dimensions (one explicit
+    // instantiation of the whole class, in elasticity.cc).
+#define CYCLOID_INSTANTIATE(dim)                                              \
+  template void LinearElasticity<dim>::assemble(                              \
+    const std::map<dealii::types::boundary_id, const dealii::Function<dim> *> \
+      &tractions);                                                            \
+  template void LinearElasticity<dim>::assemble_sets(                         \
+    const std::map<dealii::types::boundary_id, const dealii::Function<dim> *> \
+      &tractions);                                                            \
+  template bool LinearElasticity<dim>::assemble_history_load();               \
+  /* end */
+
+    CYCLOID_INSTANTIATE(2)
+    CYCLOID_INSTANTIATE(3)
+#undef CYCLOID_INSTANTIATE
   } // namespace elasticity
 } // namespace cycloid

@@ -347,7 +347,42 @@ namespace cycloid
 
 
 
-    template class LinearElasticity<2>;
-    template class LinearElasticity<3>;
+    // The members this file defines, for both dimensions (one explicit
+    // instantiation of the whole class, in elasticity.cc).
+#define CYCLOID_INSTANTIATE(dim)                                           \
+  template double LinearElasticity<dim>::density(                          \
+    const dealii::types::material_id m) const;                             \
+  template void LinearElasticity<dim>::set_dynamic_terms(                  \
+    const DynamicTerms &terms);                                            \
+  template void LinearElasticity<dim>::assemble_internal_forces(           \
+    const dealii::TrilinosWrappers::MPI::Vector &u,                        \
+    dealii::TrilinosWrappers::MPI::Vector       &f,                        \
+    const dealii::AffineConstraints<double>     *condense,                 \
+    dealii::TrilinosWrappers::MPI::Vector       *condensed,                \
+    const bool                                   effective,                \
+    const bool                                   with_load,                \
+    const CellList                              *cells,                    \
+    dealii::TrilinosWrappers::MPI::Vector       *operator_only) const;           \
+  template dealii::TrilinosWrappers::MPI::Vector LinearElasticity<         \
+    dim>::effective_forces(const dealii::TrilinosWrappers::MPI::Vector &u, \
+                           const bool      with_load,                      \
+                           const CellList *cells) const;                   \
+  template typename LinearElasticity<dim>::CellList                        \
+  LinearElasticity<dim>::owned_cells_touching(                             \
+    const std::vector<dealii::types::global_dof_index> &wanted) const;     \
+  template std::pair<double, double> LinearElasticity<dim>::energies(      \
+    const dealii::TrilinosWrappers::MPI::Vector &u,                        \
+    const dealii::TrilinosWrappers::MPI::Vector &v) const;                 \
+  template dealii::TrilinosWrappers::MPI::Vector                           \
+  LinearElasticity<dim>::mass_times(                                       \
+    const dealii::TrilinosWrappers::MPI::Vector &x) const;                 \
+  template dealii::TrilinosWrappers::MPI::Vector                           \
+  LinearElasticity<dim>::internal_forces(                                  \
+    const dealii::TrilinosWrappers::MPI::Vector &u) const;                 \
+  /* end */
+
+    CYCLOID_INSTANTIATE(2)
+    CYCLOID_INSTANTIATE(3)
+#undef CYCLOID_INSTANTIATE
   } // namespace elasticity
 } // namespace cycloid

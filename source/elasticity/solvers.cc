@@ -436,7 +436,45 @@ namespace cycloid
 
 
 
-    template class LinearElasticity<2>;
-    template class LinearElasticity<3>;
+    // The members this file defines, for both dimensions (one explicit
+    // instantiation of the whole class, in elasticity.cc).
+#define CYCLOID_INSTANTIATE(dim)                                              \
+  template void LinearElasticity<dim>::owned_support_points(                  \
+    std::vector<dealii::Point<dim>> &point, std::vector<int> &component)      \
+    const;                                                                    \
+  template bool LinearElasticity<dim>::nodal_blocks() const;                  \
+  template std::unique_ptr<Epetra_MultiVector>                                \
+  LinearElasticity<dim>::rigid_body_modes(const bool with_rotations) const;   \
+  template unsigned int LinearElasticity<dim>::solve(const Solver solver,     \
+                                                     const double tolerance); \
+  template bool         LinearElasticity<dim>::setup_preconditioner(          \
+    const Solver solver);                                             \
+  template bool         LinearElasticity<dim>::try_cholesky();                \
+  template unsigned int LinearElasticity<dim>::solve_set(                     \
+    const unsigned int                     k,                                 \
+    const Solver                           solver,                            \
+    const double                           tolerance,                         \
+    dealii::TrilinosWrappers::MPI::Vector &u);                                \
+  template unsigned int LinearElasticity<dim>::run_cg(                        \
+    const dealii::TrilinosWrappers::MPI::Vector &rhs,                         \
+    const double                                 tolerance,                   \
+    const unsigned int                           max_steps,                   \
+    dealii::TrilinosWrappers::MPI::Vector       &x);                                \
+  template std::vector<dealii::TrilinosWrappers::MPI::Vector>                 \
+  LinearElasticity<dim>::solve_many(                                          \
+    const std::vector<dealii::TrilinosWrappers::MPI::Vector> &rhs,            \
+    const unsigned int                                        block);                                                \
+  template std::pair<double, double> LinearElasticity<dim>::residual_norms(   \
+    const dealii::TrilinosWrappers::MPI::Vector &u, const unsigned int k)     \
+    const;                                                                    \
+  template std::pair<double, double> LinearElasticity<dim>::residual_norms(   \
+    const dealii::TrilinosWrappers::MPI::Vector &u,                           \
+    const dealii::AffineConstraints<double>     &constraints,                 \
+    const bool                                   with_load) const;                                              \
+  /* end */
+
+    CYCLOID_INSTANTIATE(2)
+    CYCLOID_INSTANTIATE(3)
+#undef CYCLOID_INSTANTIATE
   } // namespace elasticity
 } // namespace cycloid
