@@ -51,8 +51,8 @@ namespace cycloid
 
     void
     EnergyAccount::check(const results::EnergyState &e,
-                         const std::string            &label,
-                         dealii::ConditionalOStream   &out)
+                         const std::string          &label,
+                         dealii::ConditionalOStream &out)
     {
       const double relative = e.relative_balance;
       if (std::abs(relative) > 0.05 && !warned && energy_scale > 0)

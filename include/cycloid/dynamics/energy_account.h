@@ -45,8 +45,8 @@ namespace cycloid
        * limit. */
       void
       check(const results::EnergyState &row,
-            const std::string            &label,
-            dealii::ConditionalOStream   &out);
+            const std::string          &label,
+            dealii::ConditionalOStream &out);
 
       /** Write the account to a checkpoint. */
       void

@@ -87,11 +87,11 @@ namespace cycloid
 
       /** The progress line of step @p step. */
       void
-      print_progress(const unsigned int            step,
-                     const unsigned int            first,
-                     const results::StageState    &state,
+      print_progress(const unsigned int          step,
+                     const unsigned int          first,
+                     const results::StageState  &state,
                      const results::EnergyState &energy,
-                     const double                  elapsed) const;
+                     const double                elapsed) const;
 
       const Settings                                  settings;
       const MPI_Comm                                  comm;
