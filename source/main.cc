@@ -8,7 +8,7 @@
 #include <cycloid/app/all_parameters.h>
 #include <cycloid/app/error_report.h>
 #include <cycloid/app/run.h>
-#include <cycloid/elasticity/heap.h>
+#include <cycloid/process/heap.h>
 
 #include <iostream>
 #include <string>
@@ -135,8 +135,8 @@ int
 main(int argc, char *argv[])
 {
   // Before MPI: a restart after MPI_Init would leave the launcher waiting.
-  cycloid::elasticity::restart_with_huge_pages(argv);
-  cycloid::elasticity::release_freed_memory();
+  cycloid::process::restart_with_huge_pages(argv);
+  cycloid::process::release_freed_memory();
   // MPI lives outside the try block: the error report talks over MPI.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   try

@@ -17,9 +17,10 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <cycloid/elasticity/direct_solver.h>
 #include <cycloid/elasticity/elasticity.h>
-#include <cycloid/elasticity/heap.h>
 #include <cycloid/elasticity/sparse_cholesky.h>
+#include <cycloid/process/heap.h>
 
 #include <gtest/gtest.h>
 
@@ -339,7 +340,7 @@ namespace
   /** Largest error of the Cholesky solution of A x = A x_exact (x_exact_i
    * = sin i) over the ranks. */
   double
-  cholesky_error(const elasticity::SparseCholesky             &cholesky,
+  cholesky_error(const elasticity::DirectSolver               &cholesky,
                  const dealii::TrilinosWrappers::SparseMatrix &A)
   {
     const auto                            comm = MPI_COMM_WORLD;
@@ -480,6 +481,92 @@ TEST(Elasticity, CholeskyKeepsItsFactorAndGivesEntriesOfTheInverse)
 
 
 
+TEST(Elasticity, EveryDirectSolverSolvesAndGivesTheFormOfTheInverse)
+{
+  // One interface, five factorisations (elasticity::DirectSolver), on 1
+  // and 2 ranks. Each must solve to rounding, and give the form
+  // R^T A^{-1} R of the reduced model's condensation; with R's columns
+  // A's own columns c_j, the form is A(c_i, c_j) (R^T A^{-1} R = A), a
+  // closed form that no solve enters. Entries of the inverse must agree
+  // with A A^{-1} = I. The Cholesky kinds (CHOLMOD and MUMPS SPD) must
+  // refuse a matrix that is not positive definite.
+  const unsigned int                     n    = 301;
+  const auto                             comm = MPI_COMM_WORLD;
+  dealii::TrilinosWrappers::SparseMatrix A;
+  fill_test_matrix(A, n, 1.);
+  const auto owned = A.locally_owned_range_indices();
+  // Columns on both ranks' rows, neighbours included (A(c_i, c_j) != 0).
+  const std::vector<unsigned int> c{0, 1, 2, 100, 149, 150, 151, 250, 300};
+  std::vector<dealii::TrilinosWrappers::MPI::Vector> R;
+  for (const unsigned int j : c)
+    {
+      dealii::TrilinosWrappers::MPI::Vector e(owned, comm);
+      R.emplace_back(owned, comm);
+      if (owned.is_element(j))
+        e[j] = 1.;
+      e.compress(dealii::VectorOperation::insert);
+      A.vmult(R.back(), e);
+    }
+  for (const auto kind : {elasticity::Factorisation::cholmod,
+                          elasticity::Factorisation::cholmod_supernodal,
+                          elasticity::Factorisation::mumps,
+                          elasticity::Factorisation::mumps_unsymmetric,
+                          elasticity::Factorisation::klu})
+    {
+      SCOPED_TRACE(elasticity::to_string(kind));
+      auto solver = elasticity::make_direct_solver(kind, comm);
+      ASSERT_EQ(solver->kind(), kind);
+      fill_test_matrix(A, n, 1.);
+      ASSERT_TRUE(solver->factorize(A)) << solver->failure();
+      EXPECT_LT(cholesky_error(*solver, A), 1e-13);
+
+      const dealii::FullMatrix<double> form = solver->inverse_form(R);
+      // A.el() reads this rank's rows only: the largest over the ranks of
+      // the rows each owns.
+      double local = 0;
+      for (unsigned int i = 0; i < c.size(); ++i)
+        if (owned.is_element(c[i]))
+          for (unsigned int j = 0; j < c.size(); ++j)
+            local = std::max(local, std::abs(form(i, j) - A.el(c[i], c[j])));
+      EXPECT_LT(dealii::Utilities::MPI::max(local, comm), 1e-12);
+
+      const std::vector<dealii::types::global_dof_index> columns{3, 150, 299};
+      std::vector<dealii::types::global_dof_index>       rows(n);
+      for (unsigned int i = 0; i < n; ++i)
+        rows[i] = i;
+      const std::vector<double> inverse =
+        solver->inverse_entries(columns, rows);
+      double identity_error = 0;
+      for (unsigned int k = 0; k < columns.size(); ++k)
+        {
+          dealii::TrilinosWrappers::MPI::Vector z(owned, comm), az(z);
+          for (const auto i : owned)
+            z[i] = inverse[i * columns.size() + k];
+          z.compress(dealii::VectorOperation::insert);
+          A.vmult(az, z);
+          for (const auto i : owned)
+            identity_error =
+              std::max(identity_error,
+                       std::abs(az[i] - (i == columns[k] ? 1. : 0.)));
+        }
+      EXPECT_LT(dealii::Utilities::MPI::max(identity_error, comm), 1e-13);
+
+      if (kind == elasticity::Factorisation::klu ||
+          kind == elasticity::Factorisation::mumps_unsymmetric)
+        continue;
+      // Symmetric with a negative diagonal entry: a Cholesky must refuse.
+      if (owned.is_element(n / 2))
+        A.set(n / 2, n / 2, -1.);
+      A.compress(dealii::VectorOperation::insert);
+      EXPECT_FALSE(solver->factorize(A));
+      EXPECT_NE(solver->failure().find("not positive definite"),
+                std::string::npos)
+        << solver->failure();
+    }
+}
+
+
+
 TEST(Elasticity, HistoryLoadAloneIsTheFullAssemblysRightHandSide)
 {
   // What a transient step through contact::ContactSchur assembles: only
@@ -564,8 +651,8 @@ TEST(Heap, MatrixSizedBlocksGoBackToTheSystemWhenFreed)
   // This executable links deal.II, and with it the library whose static
   // initialiser turns mapped blocks off: without release_freed_memory() a
   // 64 MB block would stay in the heap after it is freed.
-  elasticity::release_freed_memory(32u << 20);
-  ASSERT_EQ(elasticity::mmap_threshold(), 32u << 20)
+  process::release_freed_memory(32u << 20);
+  ASSERT_EQ(process::mmap_threshold(), 32u << 20)
     << "CYCLOID_MMAP_THRESHOLD is set in the environment";
   const std::size_t mapped_before = mallinfo2().hblkhd;
   {
@@ -598,11 +685,11 @@ TEST(Heap, FreedSmallBlocksGoBackWhenThePagesAreGivenBack)
   // leave the process's resident memory only once the pages are given
   // back. A small block allocated after them keeps the heap's top from
   // being the free space, as in a run, where live data follows.
-  elasticity::release_freed_memory(32u << 20);
-  ASSERT_EQ(elasticity::mmap_threshold(), 32u << 20)
+  process::release_freed_memory(32u << 20);
+  ASSERT_EQ(process::mmap_threshold(), 32u << 20)
     << "CYCLOID_MMAP_THRESHOLD is set in the environment";
   constexpr std::size_t block = 1024, n = 300 * 1024;
-  static_assert(n * block > elasticity::give_back_threshold,
+  static_assert(n * block > process::give_back_threshold,
                 "the call gives back only above its threshold");
   std::vector<std::unique_ptr<char[]>> blocks(n);
   for (auto &b : blocks)
@@ -616,7 +703,7 @@ TEST(Heap, FreedSmallBlocksGoBackWhenThePagesAreGivenBack)
   blocks.clear();
   blocks.shrink_to_fit();
   const std::size_t freed = resident_bytes();
-  elasticity::give_back_freed_pages();
+  process::give_back_freed_pages();
   const std::size_t given_back = resident_bytes();
   // Freeing alone returns (almost) nothing: the pages are still mapped.
   EXPECT_GT(freed + (n * block) / 2, with_blocks);

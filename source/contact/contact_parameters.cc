@@ -88,6 +88,25 @@ namespace cycloid
           "3D seed case: peak memory x0.70, the whole run x0.95, CG "
           "iterations 486 against 452), smoothed-V in 2D (doc/solver-reuse.md). "
           "Ignored by the direct solver.");
+        prm.declare_entry(
+          "Direct solver",
+          "auto",
+          parameters::OrAuto(Selection(elasticity::factorisation_names())),
+          "The sparse factorisation of Linear solver = direct and of the "
+          "reduced model's condensation (one factorisation, every load case "
+          "as one block): cholmod (Cholesky, simplicial, AMD ordering, on "
+          "one rank), cholmod-supernodal (the same with dense blocks and "
+          "METIS ordering, for 3D fill-in), mumps (MUMPS L D L^T of the "
+          "symmetric positive definite matrix on every rank, sparse "
+          "right-hand sides), mumps-unsymmetric (MUMPS L U: the solver before "
+          "issue #49, for comparison), klu (L U on one rank). A Cholesky that "
+          "finds the matrix not positive definite hands it to klu. auto: "
+          "cholmod, except the 3D reduced condensation: mumps. Measured side "
+          "by side (doc/solver-reuse.md, \"One direct-solver interface\"): "
+          "the 3D reduced seed case takes 17 s and 2.3 GB on 2 ranks with "
+          "mumps, 32 s and 3.2 GB with cholmod-supernodal, 25 s and 3.0 GB "
+          "with mumps-unsymmetric; the 2D transient example's steps are "
+          "fastest with cholmod (21 s, mumps 22 s, klu 31 s).");
         prm.declare_entry("Relative tolerance",
                           "1e-10",
                           Double(1e-16, 1e-2),
@@ -173,12 +192,16 @@ namespace cycloid
                              Formulation::node_to_surface;
       prm.leave_subsection();
       prm.enter_subsection("Solver");
-      const std::string solver    = prm.get("Linear solver");
-      linear_solver               = solver == "direct" ?
-                                      elasticity::LinearSolver::direct :
-                                    solver == "cg-amg-translations" ?
-                                      elasticity::LinearSolver::cg_amg_translations_only :
-                                      elasticity::LinearSolver::cg_amg;
+      const std::string solver = prm.get("Linear solver");
+      linear_solver            = solver == "direct" ?
+                                   elasticity::LinearSolver::direct :
+                                 solver == "cg-amg-translations" ?
+                                   elasticity::LinearSolver::cg_amg_translations_only :
+                                   elasticity::LinearSolver::cg_amg;
+      const std::string direct = prm.get("Direct solver");
+      direct_solver.reset();
+      if (!parameters::is_auto(direct))
+        direct_solver = elasticity::factorisation_from_string(direct);
       const std::string hierarchy = prm.get("AMG hierarchy");
       amg_hierarchy.reset();
       if (!parameters::is_auto(hierarchy))

@@ -29,6 +29,7 @@ namespace cycloid
           create_formulation<dim>(formulation_name(settings.formulation)))
     {
       problem->set_amg_hierarchy(settings.amg_hierarchy);
+      problem->set_factorisation(settings.factorisation);
     }
 
 

@@ -13,8 +13,8 @@
 
 #include <cycloid/elasticity/digest.h>
 #include <cycloid/elasticity/elasticity.h>
-#include <cycloid/elasticity/heap.h>
 #include <cycloid/elasticity/support_points.h>
+#include <cycloid/process/heap.h>
 
 #include <algorithm>
 #include <iostream>
@@ -339,8 +339,7 @@ namespace cycloid
       ready        = ready == Ready::amg || ready == Ready::stale_amg ?
                        Ready::stale_amg :
                        Ready::none;
-      many_solver.reset();
-      many_problem.reset();
+      form_factor.reset();
     }
 
 

@@ -16,8 +16,8 @@
 
 #include <cycloid/elasticity/digest.h>
 #include <cycloid/elasticity/elasticity.h>
-#include <cycloid/elasticity/heap.h>
 #include <cycloid/elasticity/support_points.h>
+#include <cycloid/process/heap.h>
 
 #include <algorithm>
 #include <iostream>
@@ -105,13 +105,12 @@ namespace cycloid
       for (auto &rhs : rhs_sets)
         rhs.reinit(locally_owned, comm);
       locally_relevant_solution.reinit(locally_owned, locally_relevant, comm);
-      many_solver.reset();
-      many_problem.reset();
+      form_factor.reset();
       // The old constraints' lines (and the dynamic pattern's rows, if the
       // pattern was rebuilt) are freed: their pages go back before the
       // assembly and the AMG set-up peak on top of them (where that is
       // worth it, see there).
-      give_back_freed_pages();
+      process::give_back_freed_pages();
     }
 
 
@@ -176,9 +175,11 @@ namespace cycloid
       // doc/solver-reuse.md, "Memory").
       amg.clear();
       jacobi.clear();
-      direct.reset();
-      many_solver.reset();
-      many_problem.reset();
+      // KLU holds the old matrix; CHOLMOD keeps its own copy and, for the
+      // next matrix, its ordering.
+      if (direct && direct->kind() == Factorisation::klu)
+        direct.reset();
+      form_factor.reset();
       system_matrix.clear();
       ready        = Ready::none;
       jacobi_ready = false;

@@ -14,8 +14,8 @@
 
 #include <cycloid/elasticity/digest.h>
 #include <cycloid/elasticity/elasticity.h>
-#include <cycloid/elasticity/heap.h>
 #include <cycloid/elasticity/support_points.h>
+#include <cycloid/process/heap.h>
 
 #include <algorithm>
 #include <iostream>

@@ -17,14 +17,12 @@
 
 #include <cycloid/elasticity/digest.h>
 #include <cycloid/elasticity/elasticity.h>
-#include <cycloid/elasticity/heap.h>
 #include <cycloid/elasticity/support_points.h>
+#include <cycloid/process/heap.h>
 
 #include <algorithm>
 #include <iostream>
 
-#include <Amesos.h>
-#include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 
@@ -147,17 +145,12 @@ namespace cycloid
           if (ready == Ready::direct)
             return false;
           ++n_builds;
-          ready        = Ready::direct;
-          use_cholesky = solver == Solver::direct && try_cholesky();
-          if (use_cholesky)
-            return true;
-          direct_control = std::make_unique<dealii::SolverControl>(1, 0);
-          direct = std::make_unique<dealii::TrilinosWrappers::SolverDirect>(
-            *direct_control,
-            dealii::TrilinosWrappers::SolverDirect::AdditionalData(
-              false,
-              solver == Solver::direct_mumps ? "Amesos_Mumps" : "Amesos_Klu"));
-          direct->initialize(system_matrix);
+          ready = Ready::direct;
+          if (!try_factorisation())
+            {
+              direct = make_direct_solver(Factorisation::klu, comm);
+              direct->factorize(system_matrix);
+            }
           return true;
         }
       if (ready == Ready::amg || (ready == Ready::stale_amg && !rebuild_amg) ||
@@ -216,24 +209,24 @@ namespace cycloid
 
     template <int dim>
     bool
-    LinearElasticity<dim>::try_cholesky()
+    LinearElasticity<dim>::try_factorisation()
     {
       // Every operator of this project with its supports is symmetric
       // positive definite; a matrix that is not (a body left free, a
       // formulation that breaks symmetry) goes to LU, and so does the rest
       // of the run rather than gathering and refusing again each time.
-      if (cholesky_refused)
+      if (factorisation_refused)
         return false;
-      if (!cholesky)
-        cholesky = std::make_unique<SparseCholesky>(comm);
-      if (cholesky->factorize(system_matrix))
+      if (!direct || direct->kind() != factorisation)
+        direct = make_direct_solver(factorisation, comm);
+      if (direct->factorize(system_matrix))
         return true;
       dealii::ConditionalOStream(
         std::cerr, dealii::Utilities::MPI::this_mpi_process(comm) == 0)
-        << "  note: " << cholesky->failure()
+        << "  note: " << direct->failure()
         << "; the direct solver uses KLU (LU) from here on\n";
-      cholesky_refused = true;
-      cholesky.reset();
+      factorisation_refused = true;
+      direct.reset();
       return false;
     }
 
@@ -276,10 +269,7 @@ namespace cycloid
       else if (is_direct(solver))
         {
           setup_preconditioner(solver);
-          if (use_cholesky)
-            cholesky->solve(x, rhs);
-          else
-            direct->solve(x, rhs);
+          direct->solve(x, rhs);
         }
       else
         {
@@ -337,60 +327,25 @@ namespace cycloid
 
 
     template <int dim>
-    std::vector<dealii::TrilinosWrappers::MPI::Vector>
-    LinearElasticity<dim>::solve_many(
-      const std::vector<dealii::TrilinosWrappers::MPI::Vector> &rhs,
-      const unsigned int                                        block)
+    dealii::FullMatrix<double>
+    LinearElasticity<dim>::inverse_form(
+      const std::vector<dealii::TrilinosWrappers::MPI::Vector> &r,
+      const Factorisation                                       factorisation,
+      std::string                                              *statistics)
     {
-      const Epetra_CrsMatrix &A = system_matrix.trilinos_matrix();
-      std::vector<dealii::TrilinosWrappers::MPI::Vector> solutions;
-      if (!many_problem)
+      if (!form_factor || form_factor->kind() != factorisation)
         {
-          many_problem = std::make_shared<Epetra_LinearProblem>();
-          many_problem->SetOperator(const_cast<Epetra_CrsMatrix *>(&A));
-        }
-      Epetra_LinearProblem &problem = *many_problem;
-      for (unsigned int first = 0; first < rhs.size(); first += block)
-        {
-          const unsigned int n =
-            std::min<unsigned int>(block, rhs.size() - first);
-          Epetra_MultiVector B(A.RangeMap(), n), X(A.DomainMap(), n);
-          for (unsigned int k = 0; k < n; ++k)
-            {
-              const Epetra_MultiVector &b = rhs[first + k].trilinos_vector();
-              for (int i = 0; i < B.MyLength(); ++i)
-                B[k][i] = b[0][i];
-            }
-          problem.SetLHS(&X);
-          problem.SetRHS(&B);
-          if (!many_solver)
-            {
-              Amesos factory;
-              many_solver.reset(factory.Create("Amesos_Mumps", problem));
-              AssertThrow(many_solver != nullptr,
-                          dealii::ExcMessage(
-                            "elasticity: Trilinos has no Amesos_Mumps."));
-              AssertThrow(many_solver->SymbolicFactorization() == 0 &&
-                            many_solver->NumericFactorization() == 0,
-                          dealii::ExcMessage(
-                            "elasticity: the MUMPS factorisation failed (is a "
-                            "body unconstrained?)"));
-            }
-          AssertThrow(many_solver->Solve() == 0,
+          form_factor = make_direct_solver(factorisation, comm);
+          AssertThrow(form_factor->factorize(system_matrix),
                       dealii::ExcMessage(
-                        "elasticity: the MUMPS solve failed."));
-          for (unsigned int k = 0; k < n; ++k)
-            {
-              dealii::TrilinosWrappers::MPI::Vector x(locally_owned, comm);
-              Epetra_MultiVector                   &xv = x.trilinos_vector();
-              for (int i = 0; i < X.MyLength(); ++i)
-                xv[0][i] = X[k][i];
-              constraint_sets[0].distribute(x);
-              solutions.emplace_back(locally_owned, locally_relevant, comm);
-              solutions.back() = x;
-            }
+                        "elasticity: the " + to_string(factorisation) +
+                        " factorisation failed: " + form_factor->failure() +
+                        " (is a body unconstrained?)"));
         }
-      return solutions;
+      auto form = form_factor->inverse_form(r);
+      if (statistics)
+        *statistics = form_factor->statistics();
+      return form;
     }
 
 
@@ -449,7 +404,7 @@ namespace cycloid
                                                      const double tolerance); \
   template bool         LinearElasticity<dim>::setup_preconditioner(          \
     const Solver solver);                                             \
-  template bool         LinearElasticity<dim>::try_cholesky();                \
+  template bool         LinearElasticity<dim>::try_factorisation();           \
   template unsigned int LinearElasticity<dim>::solve_set(                     \
     const unsigned int                     k,                                 \
     const Solver                           solver,                            \
@@ -460,10 +415,10 @@ namespace cycloid
     const double                                 tolerance,                   \
     const unsigned int                           max_steps,                   \
     dealii::TrilinosWrappers::MPI::Vector       &x);                                \
-  template std::vector<dealii::TrilinosWrappers::MPI::Vector>                 \
-  LinearElasticity<dim>::solve_many(                                          \
-    const std::vector<dealii::TrilinosWrappers::MPI::Vector> &rhs,            \
-    const unsigned int                                        block);                                                \
+  template dealii::FullMatrix<double> LinearElasticity<dim>::inverse_form(    \
+    const std::vector<dealii::TrilinosWrappers::MPI::Vector> &r,              \
+    const Factorisation                                       factorisation,  \
+    std::string                                              *statistics);                                                 \
   template std::pair<double, double> LinearElasticity<dim>::residual_norms(   \
     const dealii::TrilinosWrappers::MPI::Vector &u, const unsigned int k)     \
     const;                                                                    \

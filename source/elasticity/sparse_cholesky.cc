@@ -22,19 +22,23 @@ namespace cycloid
      * and the last fill-reducing ordering with its fill. */
     struct SparseCholesky::Cholmod
     {
+      const bool       supernodal;
       cholmod_common   common;
       cholmod_factor  *factor = nullptr;
       std::vector<int> column_start, row_index;
       std::vector<int> ordering;
       double           ordered_fill = 0;
 
-      Cholmod()
+      /** Supernodal (METIS) if @p supernodal, else simplicial (AMD). */
+      explicit Cholmod(const bool supernodal)
+        : supernodal(supernodal)
       {
         cholmod_start(&common);
-        // Simplicial: with the reference BLAS that Debian's deal.II links,
-        // the supernodal factorisation of the 2D example's matrix took
-        // 0.30 s against 0.16 s (same fill, 2.1e8 flops).
-        common.supernodal = CHOLMOD_SIMPLICIAL;
+        // Simplicial by default: with the reference BLAS that Debian's
+        // deal.II links, the supernodal factorisation of the 2D example's
+        // matrix took 0.30 s against 0.16 s (same fill, 2.1e8 flops).
+        common.supernodal =
+          supernodal ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
         // L L^T, not CHOLMOD's default L D L^T: only the former stops at a
         // pivot that is not positive, which is how an indefinite matrix is
         // recognised (same time on that matrix).
@@ -50,8 +54,11 @@ namespace cycloid
       void
       use_ordering(const bool given)
       {
+        // Nested dissection for the supernodal (3D) factorisations.
         common.nmethods           = 1;
-        common.method[0].ordering = given ? CHOLMOD_GIVEN : CHOLMOD_AMD;
+        common.method[0].ordering = given      ? CHOLMOD_GIVEN :
+                                    supernodal ? CHOLMOD_METIS :
+                                                 CHOLMOD_AMD;
       }
 
       /** A new symbolic analysis of @p A: with the kept ordering if its
@@ -86,6 +93,24 @@ namespace cycloid
       void
       solve_in_place(std::vector<double> &columns, const std::size_t k)
       {
+        apply_in_place({CHOLMOD_A}, columns, k);
+      }
+
+      /** Overwrite the @p k columns of @p columns by L^{-1} P times
+       * them (the factor is L L^T: final_ll). */
+      void
+      forward_in_place(std::vector<double> &columns, const std::size_t k)
+      {
+        apply_in_place({CHOLMOD_P, CHOLMOD_L}, columns, k);
+      }
+
+      /** Apply CHOLMOD's solves @p systems (CHOLMOD_A, _P, _L, ...) in
+       * turn to the @p k columns of @p columns, in place. */
+      void
+      apply_in_place(const std::vector<int> &systems,
+                     std::vector<double>    &columns,
+                     const std::size_t       k)
+      {
         const std::size_t n = factor->n;
         cholmod_dense     B{};
         B.nrow           = n;
@@ -95,9 +120,17 @@ namespace cycloid
         B.x              = columns.data();
         B.xtype          = CHOLMOD_REAL;
         B.dtype          = CHOLMOD_DOUBLE;
-        cholmod_dense *X = cholmod_solve(CHOLMOD_A, factor, &B, &common);
-        AssertThrow(X != nullptr,
-                    dealii::ExcMessage("SparseCholesky: the solve failed"));
+        cholmod_dense *X = nullptr;
+        for (const int system : systems)
+          {
+            cholmod_dense *Y =
+              cholmod_solve(system, factor, X ? X : &B, &common);
+            if (X)
+              cholmod_free_dense(&X, &common);
+            AssertThrow(Y != nullptr,
+                        dealii::ExcMessage("SparseCholesky: the solve failed"));
+            X = Y;
+          }
         const double *xs = static_cast<const double *>(X->x);
         std::copy(xs, xs + n * k, columns.begin());
         cholmod_free_dense(&X, &common);
@@ -113,11 +146,12 @@ namespace cycloid
 
 
 
-    SparseCholesky::SparseCholesky(const MPI_Comm comm)
+    SparseCholesky::SparseCholesky(const MPI_Comm comm, const bool supernodal)
       : comm(comm)
+      , supernodal(supernodal)
     {
       if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
-        cholmod = std::make_unique<Cholmod>();
+        cholmod = std::make_unique<Cholmod>(supernodal);
     }
 
 
@@ -137,7 +171,7 @@ namespace cycloid
       const bool        same =
         dealii::Utilities::MPI::min(static_cast<int>(digest == factored_digest),
                                     comm) == 1;
-      kept = same && why.empty() && !owned_counts.empty();
+      kept = same && why.empty() && factorised;
       if (kept)
         return true;
       why = gather_lower(matrix);
@@ -147,8 +181,7 @@ namespace cycloid
       reused          = dealii::Utilities::MPI::broadcast(comm, reused, 0);
       factored_digest = digest;
       ++n_factors;
-      if (!why.empty())
-        owned_counts.clear();
+      factorised = why.empty();
       return why.empty();
     }
 
@@ -263,14 +296,11 @@ namespace cycloid
               }
           lengths.push_back(kept);
         }
-      const int n_owned = rows.size();
-      owned_counts.assign(dealii::Utilities::MPI::n_mpi_processes(comm), 0);
-      MPI_Allgather(
-        &n_owned, 1, MPI_INT, owned_counts.data(), 1, MPI_INT, comm);
-      gathered_rows                  = gather_to_root(rows, comm);
-      const std::vector<int> all_len = gather_to_root(lengths, comm);
-      columns                        = gather_to_root(columns, comm);
-      entries                        = gather_to_root(entries, comm);
+      root.reinit(rows, comm);
+      const std::vector<int> &gathered_rows = root.gathered_rows();
+      const std::vector<int>  all_len       = gather_to_root(lengths, comm);
+      columns                               = gather_to_root(columns, comm);
+      entries                               = gather_to_root(entries, comm);
       if (!cholmod)
         return "";
       // Row gathered_rows[k] starts at row_start[k] of the gathered arrays.
@@ -296,8 +326,9 @@ namespace cycloid
       // triangle of A^T; the lower triangle of the rows, transposed, is that
       // of A. Both are sorted into columns by counting; they must agree
       // (symmetry), and their mean is what is factorised.
-      const int n       = gathered_rows.size();
-      double    largest = 0;
+      const std::vector<int> &gathered_rows = root.gathered_rows();
+      const int               n             = gathered_rows.size();
+      double                  largest       = 0;
       for (const double v : entries)
         largest = std::max(largest, std::abs(v));
       std::array<std::vector<int>, 2>    start, index;
@@ -409,86 +440,73 @@ namespace cycloid
 
 
     void
-    SparseCholesky::solve(dealii::TrilinosWrappers::MPI::Vector       &x,
-                          const dealii::TrilinosWrappers::MPI::Vector &b) const
-    {
-      solve(std::vector<dealii::TrilinosWrappers::MPI::Vector *>{&x},
-            std::vector<const dealii::TrilinosWrappers::MPI::Vector *>{&b});
-    }
-
-
-
-    void
     SparseCholesky::solve(
       const std::vector<dealii::TrilinosWrappers::MPI::Vector *>       &x,
       const std::vector<const dealii::TrilinosWrappers::MPI::Vector *> &b) const
     {
-      AssertThrow(why.empty() && !owned_counts.empty(),
+      AssertThrow(why.empty() && factorised,
                   dealii::ExcMessage("SparseCholesky: no factorisation"));
       AssertDimension(x.size(), b.size());
-      const int my_rows =
-        owned_counts[dealii::Utilities::MPI::this_mpi_process(comm)];
-      // All right-hand sides in one gather, column after column.
-      std::vector<double> local;
-      for (const auto *v : b)
-        {
-          const Epetra_MultiVector &bv = v->trilinos_vector();
-          AssertThrow(bv.MyLength() == my_rows,
-                      dealii::ExcMessage(
-                        "SparseCholesky: the vector's rows are not the "
-                        "matrix's"));
-          local.insert(local.end(), bv[0], bv[0] + my_rows);
-        }
-      const std::vector<double> gathered = gather_to_root(local, comm);
-      const std::size_t         k        = b.size();
-      const std::size_t         n        = gathered_rows.size();
-      std::vector<double>       solution(gathered.size());
-      // Rank r's block holds its rows of every column in turn.
-      std::vector<std::size_t> offsets(owned_counts.size() + 1, 0);
-      for (unsigned int r = 0; r < owned_counts.size(); ++r)
-        offsets[r + 1] = offsets[r] + owned_counts[r];
-      const auto at = [&](const std::size_t column, const std::size_t g) {
-        // Gathered row g belongs to the rank whose range holds it.
-        const auto r = std::upper_bound(offsets.begin(), offsets.end(), g) -
-                       offsets.begin() - 1;
-        return offsets[r] * k + column * owned_counts[r] + (g - offsets[r]);
-      };
+      // All right-hand sides in one gather, in the matrix's numbering.
+      std::vector<double> columns = root.gather(b);
+      if (cholmod)
+        cholmod->solve_in_place(columns, b.size());
+      root.scatter(columns, x);
+    }
+
+
+
+    dealii::FullMatrix<double>
+    SparseCholesky::inverse_form(
+      const std::vector<dealii::TrilinosWrappers::MPI::Vector> &r) const
+    {
+      AssertThrow(why.empty() && factorised,
+                  dealii::ExcMessage("SparseCholesky: no factorisation"));
+      const std::size_t                                          m = r.size();
+      std::vector<const dealii::TrilinosWrappers::MPI::Vector *> b;
+      for (const auto &v : r)
+        b.push_back(&v);
+      std::vector<double>        columns = root.gather(b);
+      dealii::FullMatrix<double> form(m, m);
       if (cholmod)
         {
-          // Into the matrix's numbering, solve, and back into the gathered
-          // order.
-          std::vector<double> ordered(n * k);
-          for (std::size_t c = 0; c < k; ++c)
-            for (std::size_t g = 0; g < n; ++g)
-              ordered[c * n + gathered_rows[g]] = gathered[at(c, g)];
-          cholmod->solve_in_place(ordered, k);
-          for (std::size_t c = 0; c < k; ++c)
-            for (std::size_t g = 0; g < n; ++g)
-              solution[at(c, g)] = ordered[c * n + gathered_rows[g]];
+          const std::size_t n = cholmod->factor->n;
+          cholmod->forward_in_place(columns, m);
+          // Y^T Y, one triangle; a column's leading zeros (L^{-1} keeps
+          // the entries above a load case's first row in the elimination
+          // order zero) are skipped.
+          std::vector<std::size_t> first(m, n);
+          for (std::size_t i = 0; i < m; ++i)
+            for (std::size_t k = 0; k < n && first[i] == n; ++k)
+              if (columns[i * n + k] != 0.)
+                first[i] = k;
+          for (std::size_t i = 0; i < m; ++i)
+            for (std::size_t j = 0; j <= i; ++j)
+              {
+                const double *yi = columns.data() + i * n;
+                const double *yj = columns.data() + j * n;
+                double        s  = 0;
+                for (std::size_t k = std::max(first[i], first[j]); k < n; ++k)
+                  s += yi[k] * yj[k];
+                form(i, j) = form(j, i) = s;
+              }
         }
-      std::vector<int> counts(owned_counts.size()), displs(owned_counts.size());
-      for (unsigned int r = 0; r < owned_counts.size(); ++r)
-        {
-          counts[r] = owned_counts[r] * k;
-          displs[r] = offsets[r] * k;
-        }
-      std::vector<double> mine(my_rows * k);
-      MPI_Scatterv(solution.data(),
-                   counts.data(),
-                   displs.data(),
-                   MPI_DOUBLE,
-                   mine.data(),
-                   mine.size(),
-                   MPI_DOUBLE,
-                   0,
-                   comm);
-      for (std::size_t c = 0; c < k; ++c)
-        {
-          Epetra_MultiVector &xv = x[c]->trilinos_vector();
-          std::copy(mine.begin() + c * my_rows,
-                    mine.begin() + (c + 1) * my_rows,
-                    xv[0]);
-        }
+      dealii::Utilities::MPI::sum(form, comm, form);
+      return form;
+    }
+
+
+
+    std::string
+    SparseCholesky::statistics() const
+    {
+      if (!cholmod || cholmod->factor == nullptr)
+        return "";
+      std::ostringstream s;
+      s << "CHOLMOD " << (supernodal ? "supernodal" : "simplicial")
+        << " L L^T: " << cholmod->common.lnz << " entries in L, "
+        << cholmod->common.fl << " flops";
+      return s.str();
     }
 
 
@@ -498,7 +516,7 @@ namespace cycloid
       const std::vector<dealii::types::global_dof_index> &columns,
       const std::vector<dealii::types::global_dof_index> &rows) const
     {
-      AssertThrow(why.empty() && !owned_counts.empty(),
+      AssertThrow(why.empty() && factorised,
                   dealii::ExcMessage("SparseCholesky: no factorisation"));
       const std::size_t   nr = rows.size(), nc = columns.size();
       std::vector<double> entries(nr * nc, 0.);

@@ -91,16 +91,14 @@ namespace cycloid
     CoarseModel<dim>::condense(const std::vector<ContactPoint> &points,
                                std::ostream                    *progress)
     {
-      // One factorisation serves every load case: Cholesky (CHOLMOD) in
-      // 2D, MUMPS in 3D (a one-rank factorisation's fill-in on a 3D mesh
-      // costs minutes; CG+AMG needs ~100 iterations a load case on the
-      // glued pins and housing).
-      const auto solver = dim == 2 ? elasticity::LinearSolver::direct :
-                                     elasticity::LinearSolver::direct_mumps;
+      // One factorisation serves every load case (CG+AMG needs ~100
+      // iterations a load case on the glued pins and housing).
       return condense_compliance(scene.contact_problem(),
                                  points,
                                  settings.load_half_width(),
-                                 solver,
+                                 elasticity::LinearSolver::direct,
+                                 settings.stage.contact.factorisation(dim,
+                                                                      true),
                                  settings.stage.contact.solver_tolerance,
                                  timing,
                                  progress);

@@ -52,6 +52,7 @@ namespace cycloid
                         quadrature,
                         dealii::update_values | dealii::update_JxW_values |
                           dealii::update_quadrature_points)
+          , faces(loadable_faces())
         {}
 
         /** Integral of the pressure of contact @p p over the disc (first)
@@ -70,12 +71,12 @@ namespace cycloid
         }
 
         /** Assemble contact @p p's load, each body's side divided by its
-         * @p total, into @p raw (plain) and @p condensed (with the
+         * @p total, into @p raw (plain; if given) and @p condensed (with the
          * constraints of set 0). */
         void
         assemble(const ContactPoint              &p,
                  const std::pair<double, double> &total,
-                 Vector                          &raw,
+                 Vector                          *raw,
                  Vector                          &condensed)
         {
           const auto            &fe       = problem.finite_element();
@@ -102,7 +103,8 @@ namespace cycloid
                   }
               }
             cell->get_dof_indices(indices);
-            raw.add(indices, cell_rhs);
+            if (raw)
+              raw->add(indices, cell_rhs);
             problem.constraints().distribute_local_to_global(cell_rhs,
                                                              indices,
                                                              condensed);
@@ -149,42 +151,77 @@ namespace cycloid
 
         /** Call @p f(side, cell) for each locally owned boundary face of
          * contact @p p's two bodies near its centre, with face_values
-         * reinitialised on it. */
+         * reinitialised on it (in the order of the cells). */
         template <typename F>
         void
         for_each_face(const ContactPoint &p, const F &f)
         {
+          for (const auto &face : faces)
+            {
+              unsigned int side;
+              if (face.material == mesh::ids::disc(p.disc) &&
+                  face.boundary == mesh::ids::flank)
+                side = 0;
+              else if (face.material == mesh::ids::pin(p.pin) &&
+                       face.boundary == mesh::ids::pin_surface)
+                side = 1;
+              else
+                continue;
+              if (face.centre.distance(centre(p, side)) >
+                  2. * w + face.diameter)
+                continue;
+              face_values.reinit(face.cell, face.number);
+              f(side, face.cell);
+            }
+        }
+
+        /** @brief A locally owned boundary face that can carry a contact
+         * load (a flank or a pin surface). */
+        struct Face
+        {
+          typename dealii::DoFHandler<dim>::active_cell_iterator cell;
+          unsigned int                                           number;
+          dealii::types::material_id                             material;
+          dealii::types::boundary_id                             boundary;
+          dealii::Point<2>                                       centre;
+          double                                                 diameter;
+        };
+
+        /** The faces a load can touch, in the order of the cells: found
+         * once, not once per contact (84 passes over the 3D mesh took a
+         * second). */
+        std::vector<Face>
+        loadable_faces() const
+        {
+          std::vector<Face> list;
           for (const auto &cell : problem.dof_handler().active_cell_iterators())
             {
               if (!cell->is_locally_owned() || !cell->at_boundary())
                 continue;
-              unsigned int               side;
-              dealii::types::boundary_id surface;
-              if (cell->material_id() == mesh::ids::disc(p.disc))
-                side = 0, surface = mesh::ids::flank;
-              else if (cell->material_id() == mesh::ids::pin(p.pin))
-                side = 1, surface = mesh::ids::pin_surface;
-              else
-                continue;
               for (const unsigned int fn : cell->face_indices())
                 {
                   const auto face = cell->face(fn);
-                  if (!face->at_boundary() || face->boundary_id() != surface)
+                  if (!face->at_boundary() ||
+                      (face->boundary_id() != mesh::ids::flank &&
+                       face->boundary_id() != mesh::ids::pin_surface))
                     continue;
-                  const auto             c = face->center();
-                  const dealii::Point<2> c2(c[0], c[1]);
-                  if (c2.distance(centre(p, side)) > 2. * w + face->diameter())
-                    continue;
-                  face_values.reinit(cell, fn);
-                  f(side, cell);
+                  const auto c = face->center();
+                  list.push_back({cell,
+                                  fn,
+                                  cell->material_id(),
+                                  face->boundary_id(),
+                                  dealii::Point<2>(c[0], c[1]),
+                                  face->diameter()});
                 }
             }
+          return list;
         }
 
         const elasticity::LinearElasticity<dim> &problem;
         const double                             w;
         const dealii::Quadrature<dim - 1>        quadrature;
         dealii::FEFaceValues<dim>                face_values;
+        const std::vector<Face>                  faces;
       };
 
       /** The load cases solved one at a time (the direct solver, or CG +
@@ -235,15 +272,19 @@ namespace cycloid
                         const std::vector<ContactPoint> &points,
                         const double                     w,
                         const elasticity::LinearSolver   solver,
+                        const elasticity::Factorisation  factorisation,
                         const double                     tolerance,
                         dealii::TimerOutput             &timer,
                         std::ostream                    *progress)
     {
-      auto               &problem = contact.elasticity_problem();
-      const MPI_Comm      comm    = problem.dof_handler().get_communicator();
-      const auto         &owned   = problem.locally_owned_dofs();
-      const unsigned int  n       = points.size();
-      std::vector<Vector> raw(n, Vector(owned, comm));
+      auto              &problem = contact.elasticity_problem();
+      const MPI_Comm     comm    = problem.dof_handler().get_communicator();
+      const auto        &owned   = problem.locally_owned_dofs();
+      const unsigned int n       = points.size();
+      // The plain load vectors are needed by the one-by-one solves only
+      // (the factorised form is F^T A^{-1} F of the condensed ones).
+      const bool          direct = elasticity::is_direct(solver);
+      std::vector<Vector> raw(direct ? 0 : n, Vector(owned, comm));
       std::vector<Vector> condensed(n, Vector(owned, comm));
       {
         dealii::TimerOutput::Scope scope(timer, "reduced: load vectors");
@@ -259,8 +300,12 @@ namespace cycloid
                           std::to_string(points[k].pin) +
                           " (the coarse mesh does not hold the contact "
                           "point)."));
-            loads.assemble(points[k], total, raw[k], condensed[k]);
-            raw[k].compress(dealii::VectorOperation::add);
+            loads.assemble(points[k],
+                           total,
+                           direct ? nullptr : &raw[k],
+                           condensed[k]);
+            if (!direct)
+              raw[k].compress(dealii::VectorOperation::add);
             condensed[k].compress(dealii::VectorOperation::add);
           }
       }
@@ -268,20 +313,21 @@ namespace cycloid
       result.matrix.reinit(n, n);
       {
         dealii::TimerOutput::Scope scope(timer, "reduced: solves");
-        Vector                     owned_u(owned, comm);
-        if (solver == elasticity::LinearSolver::direct_mumps)
+        if (direct)
           {
-            // One factorisation, the load cases in blocks.
+            // One factorisation, every load case in one block: C = F^T
+            // A^{-1} F (the constraints of set 0 are homogeneous, so f_i .
+            // u_k is the condensed f_i . A^{-1} f_k).
             if (progress)
-              *progress << "    factorising and solving " << n
-                        << " load cases (MUMPS, blocked)" << std::endl;
-            const auto u = problem.solve_many(condensed);
-            for (unsigned int k = 0; k < n; ++k)
-              {
-                owned_u = u[k];
-                for (unsigned int i = 0; i < n; ++i)
-                  result.matrix(i, k) = raw[i] * owned_u;
-              }
+              *progress << "    factorising ("
+                        << elasticity::to_string(factorisation)
+                        << ") and solving " << n << " load cases as one block"
+                        << std::endl;
+            std::string statistics;
+            result.matrix =
+              problem.inverse_form(condensed, factorisation, &statistics);
+            if (progress && !statistics.empty())
+              *progress << "    " << statistics << std::endl;
           }
         else
           solve_one_by_one(
@@ -308,6 +354,7 @@ namespace cycloid
                            const std::vector<ContactPoint> &,
                            const double,
                            const elasticity::LinearSolver,
+                           const elasticity::Factorisation,
                            const double,
                            dealii::TimerOutput &,
                            std::ostream *);
@@ -316,6 +363,7 @@ namespace cycloid
                            const std::vector<ContactPoint> &,
                            const double,
                            const elasticity::LinearSolver,
+                           const elasticity::Factorisation,
                            const double,
                            dealii::TimerOutput &,
                            std::ostream *);

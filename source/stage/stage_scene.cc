@@ -7,8 +7,8 @@
 #include <deal.II/grid/tria_accessor.h>
 #include <deal.II/grid/tria_iterator.h>
 
-#include <cycloid/elasticity/heap.h>
 #include <cycloid/elasticity/support_points.h>
+#include <cycloid/process/heap.h>
 #include <cycloid/results/cost_figures.h>
 #include <cycloid/results/error_estimate.h>
 #include <cycloid/stage/cost_estimate.h>
@@ -164,6 +164,7 @@ namespace cycloid
       cs.formulation          = c.formulation;
       cs.solver               = c.linear_solver;
       cs.amg_hierarchy        = c.hierarchy(dim);
+      cs.factorisation        = c.factorisation(dim, false);
       // The Schur path takes its rows from the hanging and support lines
       // of the cells a rank holds: on a distributed mesh they differ
       // between the ranks, so it runs on the shared mesh only.
@@ -315,7 +316,7 @@ namespace cycloid
                     dealii::Utilities::MPI::n_mpi_processes(comm),
                     false};
       in.plain_amg     = plain_amg();
-      in.heap_released = elasticity::mmap_threshold() != 0;
+      in.heap_released = process::mmap_threshold() != 0;
       return in;
     }
 

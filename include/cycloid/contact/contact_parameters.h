@@ -36,6 +36,9 @@ namespace cycloid
       /** Linear solver (`Linear solver`: cg-amg, cg-amg-translations or
        * direct). */
       elasticity::LinearSolver linear_solver = elasticity::LinearSolver::cg_amg;
+      /** `Direct solver`: as set, or absent for auto (see
+       * factorisation()). */
+      std::optional<elasticity::Factorisation> direct_solver;
       /** `AMG hierarchy`: as set, or absent for auto (see hierarchy()). */
       std::optional<elasticity::AMGHierarchy> amg_hierarchy;
       /** Relative tolerance of the iterative solver [-]. */
@@ -93,6 +96,19 @@ namespace cycloid
         return amg_hierarchy.value_or(dim == 3 ?
                                         elasticity::AMGHierarchy::plain_w :
                                         elasticity::AMGHierarchy::smoothed_v);
+      }
+
+      /** The factorisation of a direct solve: as set, else CHOLMOD's
+       * simplicial Cholesky, except for the reduced model's condensation
+       * (@p condensation) of a 3D scene (@p dim): MUMPS's L D L^T, whose
+       * condensation of the seed case took 8.7 s against CHOLMOD
+       * supernodal's 21.7 s, on 2 ranks (doc/solver-reuse.md). */
+      elasticity::Factorisation
+      factorisation(const unsigned int dim, const bool condensation) const
+      {
+        return direct_solver.value_or(condensation && dim == 3 ?
+                                        elasticity::Factorisation::mumps :
+                                        elasticity::Factorisation::cholmod);
       }
 
       /** Declare subsections `Contact` and `Solver`. */

@@ -149,6 +149,9 @@ namespace cycloid
       double search_distance = 0.1;
       /** Linear solver. */
       elasticity::LinearSolver solver = elasticity::LinearSolver::cg_amg;
+      /** The factorisation of the direct solver. */
+      elasticity::Factorisation factorisation =
+        elasticity::Factorisation::cholmod;
       /** How ML builds the hierarchy of the CG solver. */
       elasticity::AMGHierarchy amg_hierarchy =
         elasticity::AMGHierarchy::smoothed_v;

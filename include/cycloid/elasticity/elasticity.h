@@ -17,7 +17,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <cycloid/elasticity/sparse_cholesky.h>
+#include <cycloid/elasticity/direct_solver.h>
 #include <cycloid/parameters/material.h>
 
 #include <functional>
@@ -27,9 +27,6 @@
 #include <vector>
 
 #include <Epetra_MultiVector.h>
-
-class Amesos_BaseSolver;
-class Epetra_LinearProblem;
 
 namespace cycloid
 {
@@ -45,12 +42,9 @@ namespace cycloid
       cg_amg_translations_only,
       /** Direct sparse solver on the matrix gathered to rank 0: Cholesky
        * (CHOLMOD, SparseCholesky), or Amesos' KLU (LU) for a matrix that is
-       * not symmetric positive definite. */
-      direct,
-      /** Direct sparse solver (Amesos MUMPS, parallel): for many
-       * right-hand sides of one 3D matrix (the reduced model's load
-       * cases), where KLU's fill-in is too costly. */
-      direct_mumps
+       * not symmetric positive definite. (Many right-hand sides of one
+       * matrix: LinearElasticity::inverse_form() with any Factorisation.) */
+      direct
     };
 
     /**
@@ -73,8 +67,7 @@ namespace cycloid
     inline bool
     is_direct(const LinearSolver solver)
     {
-      return solver == LinearSolver::direct ||
-             solver == LinearSolver::direct_mumps;
+      return solver == LinearSolver::direct;
     }
 
     /**
@@ -174,6 +167,14 @@ namespace cycloid
         amg_hierarchy = hierarchy;
       }
 
+      /** The factorisation of LinearSolver::direct (a Cholesky that
+       * refuses a matrix hands it, and the rest of the run, to KLU). */
+      void
+      set_factorisation(const Factorisation f)
+      {
+        factorisation = f;
+      }
+
       /**
        * Build, now, one sparsity pattern for every constraint set given to
        * setup_constraints() until the next call or distribute_dofs(): the
@@ -263,18 +264,19 @@ namespace cycloid
                 dealii::TrilinosWrappers::MPI::Vector &u);
 
       /**
-       * Solve constraint set 0's matrix for every right-hand side of
-       * @p rhs (owned, condensed as for set_right_hand_side()) with one
-       * MUMPS factorisation and blocked solves (@p block right-hand sides
-       * at a time: one multi-vector solve costs far less than as many
-       * single ones); returns the solutions with ghosts, set 0's
-       * constraints distributed. The factorisation is kept for the next
-       * call until the matrix is assembled again. For the many load cases
-       * of one matrix (the reduced model's condensation).
+       * The form R^T A^{-1} R of constraint set 0's matrix A and the
+       * columns @p r (owned, condensed as for set_right_hand_side()): the
+       * reduced model's compliance of its load cases, with one
+       * factorisation of kind @p factorisation, kept for the next call
+       * until the matrix is assembled again. Equals r_i^T u_j with u_j the
+       * solution for r_j, set 0's (homogeneous) constraints distributed.
+       * @p statistics, if given, receives the factorisation's
+       * DirectSolver::statistics().
        */
-      std::vector<dealii::TrilinosWrappers::MPI::Vector>
-      solve_many(const std::vector<dealii::TrilinosWrappers::MPI::Vector> &rhs,
-                 const unsigned int block = 64);
+      dealii::FullMatrix<double>
+      inverse_form(const std::vector<dealii::TrilinosWrappers::MPI::Vector> &r,
+                   const Factorisation factorisation,
+                   std::string        *statistics = nullptr);
 
       /**
        * Replace the right-hand side of constraint set @p k by @p rhs (owned
@@ -599,6 +601,8 @@ namespace cycloid
       bool rebuild_amg = false;
       /** Aggregation and cycle of the AMG hierarchy. */
       AMGHierarchy amg_hierarchy = AMGHierarchy::smoothed_v;
+      /** LinearSolver::direct's factorisation (set_factorisation()). */
+      Factorisation factorisation = Factorisation::cholmod;
       /** CG iterations of the first solve after the last AMG build (0:
        * none yet). */
       unsigned int reference_iterations = 0;
@@ -653,10 +657,10 @@ namespace cycloid
       void
       reinit_matrix(dealii::DynamicSparsityPattern &dsp);
 
-      /** Factorise the matrix with cholesky unless it refused one before;
-       * whether it did (else the caller uses KLU). */
+      /** Factorise the matrix with the chosen factorisation unless it
+       * refused one before; whether it did (else the caller uses KLU). */
       bool
-      try_cholesky();
+      try_factorisation();
 
       /** CG with the AMG on @p rhs from @p x, at most @p max_steps
        * iterations; returns the iterations or throws NoConvergence. */
@@ -665,20 +669,16 @@ namespace cycloid
              const double                                 tolerance,
              const unsigned int                           max_steps,
              dealii::TrilinosWrappers::MPI::Vector       &x);
-      std::unique_ptr<dealii::SolverControl>                  direct_control;
-      std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> direct;
-      /** The Cholesky factorisation of LinearSolver::direct (kept with its
-       * symbolic analysis between matrices). */
-      std::unique_ptr<SparseCholesky> cholesky;
-      /** Whether the current factorisation is cholesky's (else direct's). */
-      bool use_cholesky = false;
-      /** Whether cholesky refused a matrix (then the run uses KLU). */
-      bool cholesky_refused = false;
-      /** solve_many()'s linear problem and MUMPS factorisation, kept for
-       * later calls while the matrix stays (reset with it); shared_ptr
-       * holds Amesos' types without their headers here. */
-      std::shared_ptr<Epetra_LinearProblem> many_problem;
-      std::shared_ptr<Amesos_BaseSolver>    many_solver;
+      /** LinearSolver::direct's factorisation: the chosen one (kept with
+       * its symbolic analysis between matrices), or KLU once a matrix was
+       * refused. */
+      std::unique_ptr<DirectSolver> direct;
+      /** Whether the chosen factorisation refused a matrix (then the run
+       * uses KLU). */
+      bool factorisation_refused = false;
+      /** inverse_form()'s factorisation, kept for later calls while the
+       * matrix stays (reset with it). */
+      std::unique_ptr<DirectSolver> form_factor;
     };
   } // namespace elasticity
 } // namespace cycloid

@@ -7,6 +7,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <cycloid/elasticity/direct_solver.h>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,9 +20,9 @@ namespace cycloid
     /**
      * @brief Sparse Cholesky factorisation A = L L^T of a distributed
      * symmetric positive definite Trilinos matrix: the matrix is gathered
-     * to rank 0 and factorised there by CHOLMOD (SuiteSparse, simplicial,
-     * AMD ordering); each solve gathers the right-hand side and scatters
-     * the solution back.
+     * to rank 0 and factorised there by CHOLMOD (SuiteSparse; simplicial
+     * with AMD ordering, or supernodal with METIS ordering); each solve
+     * gathers the right-hand side and scatters the solution back.
      *
      * Why not Amesos' KLU, which gathers the same way: KLU is an LU
      * factorisation made for circuit matrices, with no use of symmetry; on
@@ -36,14 +38,27 @@ namespace cycloid
      * factorize() refuses (returns false on every rank) a matrix that is
      * not symmetric to rounding or not positive definite; the caller then
      * falls back to an LU factorisation.
+     *
+     * The supernodal variant is for 3D matrices, whose fill-in makes dense
+     * blocks worth BLAS's level 3 (doc/solver-reuse.md, "One
+     * direct-solver interface").
      */
-    class SparseCholesky
+    class SparseCholesky : public DirectSolver
     {
     public:
-      /** A factorisation on the ranks of @p comm. */
-      explicit SparseCholesky(const MPI_Comm comm);
+      /** A factorisation on the ranks of @p comm; supernodal with METIS
+       * ordering if @p supernodal, else simplicial with AMD. */
+      explicit SparseCholesky(const MPI_Comm comm,
+                              const bool     supernodal = false);
 
-      ~SparseCholesky();
+      ~SparseCholesky() override;
+
+      Factorisation
+      kind() const override
+      {
+        return supernodal ? Factorisation::cholmod_supernodal :
+                            Factorisation::cholmod;
+      }
 
       /**
        * Factorise @p matrix. Returns false, on every rank, if it is not
@@ -52,20 +67,27 @@ namespace cycloid
        * failure().
        */
       bool
-      factorize(const dealii::TrilinosWrappers::SparseMatrix &matrix);
+      factorize(const dealii::TrilinosWrappers::SparseMatrix &matrix) override;
 
-      /** x = A^{-1} b for the last matrix factorize() accepted; @p x and
-       * @p b with the matrix's row distribution (not ghosted). */
-      void
-      solve(dealii::TrilinosWrappers::MPI::Vector       &x,
-            const dealii::TrilinosWrappers::MPI::Vector &b) const;
+      using DirectSolver::solve;
 
       /** x_k = A^{-1} b_k for several right-hand sides at once (one
-       * gather, one pass over the factor for up to four columns). */
+       * gather, one pass over the factor for up to four columns); @p x
+       * and @p b with the matrix's row distribution (not ghosted). */
       void
       solve(const std::vector<dealii::TrilinosWrappers::MPI::Vector *>       &x,
             const std::vector<const dealii::TrilinosWrappers::MPI::Vector *> &b)
-        const;
+        const override;
+
+      /** R^T A^{-1} R = Y^T Y with Y = L^{-1} P R: the forward solves
+       * only, all columns as one block, and symmetric by construction. */
+      dealii::FullMatrix<double>
+      inverse_form(const std::vector<dealii::TrilinosWrappers::MPI::Vector> &r)
+        const override;
+
+      /** Entries of L and the factorisation's flops. */
+      std::string
+      statistics() const override;
 
       /**
        * Entries of A^{-1} for the last matrix factorize() accepted: the
@@ -78,7 +100,8 @@ namespace cycloid
       std::vector<double>
       inverse_entries(
         const std::vector<dealii::types::global_dof_index> &columns,
-        const std::vector<dealii::types::global_dof_index> &rows) const;
+        const std::vector<dealii::types::global_dof_index> &rows)
+        const override;
 
       /** Whether the last factorize() found the matrix unchanged, entry by
        * entry, since the factorisation before, and kept that one. */
@@ -106,7 +129,7 @@ namespace cycloid
       /** Why the last factorize() refused the matrix (empty if it did
        * not). */
       const std::string &
-      failure() const
+      failure() const override
       {
         return why;
       }
@@ -137,18 +160,20 @@ namespace cycloid
       factorize_on_root();
 
       const MPI_Comm comm;
+      const bool     supernodal;
       /** CHOLMOD's workspace and factor (rank 0 only); its types stay out
        * of this header. */
       struct Cholmod;
       std::unique_ptr<Cholmod> cholmod;
-      /** Each rank's number of owned rows, and on rank 0 all ranks' row
-       * indices in the order of the gathered rows. */
-      std::vector<int> owned_counts, gathered_rows;
+      /** The rows' distribution (gathered to rank 0 and back). */
+      RootColumns root;
       /** The gathered lower triangle (compressed columns, rank 0). */
       std::vector<int>    column_start, row_index;
       std::vector<double> values;
       bool                reused = false;
-      std::string         why;
+      /** Whether a factorisation is there (the last one was accepted). */
+      bool        factorised = false;
+      std::string why;
       /** fingerprint() of the factorised matrix, on each rank. */
       std::size_t  factored_digest = 0;
       bool         kept            = false;

@@ -85,7 +85,11 @@ namespace cycloid
      * fine face quadrature and scaled to the exact unit force on each
      * body. Then C(i, k) = f_i . u_k: the work-conjugate (pressure-
      * weighted) separation, which makes C symmetric and independent of
-     * where a node happens to lie. The stages are timed in @p timer
+     * where a node happens to lie. A direct @p solver computes C = F^T
+     * A^{-1} F with one factorisation of kind @p factorisation
+     * (LinearElasticity::inverse_form(), every load case in one block);
+     * CG + AMG solves the load cases one by one to @p tolerance. The
+     * stages are timed in @p timer
      * ("reduced: load vectors", "reduced: solves").
      * If @p progress is given, a line goes there about every tenth of
      * the load cases (and every 30 s) with the cases done and the time.
@@ -96,6 +100,7 @@ namespace cycloid
                         const std::vector<ContactPoint> &points,
                         const double                     w,
                         const elasticity::LinearSolver   solver,
+                        const elasticity::Factorisation  factorisation,
                         const double                     tolerance,
                         dealii::TimerOutput             &timer,
                         std::ostream                    *progress = nullptr);

@@ -53,7 +53,7 @@ namespace cycloid
     constexpr double heap_memory = 0.82;
 
     /** DoFs per rank from which heap_memory applies: the DoF count at which
-     * a rank frees at least elasticity::give_back_threshold (192 MB) of its
+     * a rank frees at least process::give_back_threshold (192 MB) of its
      * heap, where the trim acts. The estimate comes before the heap exists,
      * so it cannot read the free heap itself. Measured: 235-426 MB free at
      * 750 k DoFs a rank (the seed case), 50-130 MB at 145-290 k, where a

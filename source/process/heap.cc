@@ -1,4 +1,4 @@
-#include <cycloid/elasticity/heap.h>
+#include <cycloid/process/heap.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -12,7 +12,7 @@
 
 namespace cycloid
 {
-  namespace elasticity
+  namespace process
   {
     namespace
     {
@@ -124,5 +124,5 @@ namespace cycloid
         malloc_trim(0);
 #endif
     }
-  } // namespace elasticity
+  } // namespace process
 } // namespace cycloid

@@ -1,11 +1,11 @@
-#ifndef cycloid_elasticity_heap_h
-#define cycloid_elasticity_heap_h
+#ifndef cycloid_process_heap_h
+#define cycloid_process_heap_h
 
 #include <cstddef>
 
 namespace cycloid
 {
-  namespace elasticity
+  namespace process
   {
     /**
      * Let freed matrix-sized blocks go back to the system.
@@ -89,7 +89,7 @@ namespace cycloid
      */
     void
     restart_with_huge_pages(char **argv);
-  } // namespace elasticity
+  } // namespace process
 } // namespace cycloid
 
 #endif
