@@ -9,7 +9,7 @@ CYCLOID_BUILD=${CYCLOID_BUILD:-$CYCLOID_ROOT/build}
 
 CYCLOID_PACKAGES=(
   build-essential cmake ccache
-  libdeal.ii-dev libgmsh-dev gmsh
+  libdeal.ii-dev libgmsh-dev gmsh libmumps-dev
   openmpi-bin libgtest-dev numdiff doxygen
   python3 python3-numpy python3-matplotlib python3-vtk9 python3-h5py
   python3-ezdxf python3-gmsh
