@@ -67,6 +67,79 @@ namespace cycloid
                     " MB); it would stop before the solve" :
                   "");
       }
+
+      /** @brief The worst cell of a mesh by scaled Jacobian. */
+      struct WorstCell
+      {
+        double           jacobian = 1;
+        std::string      body;
+        dealii::Point<3> centre;
+      };
+
+      /** mesh.csv's text (one row a body) into @p table; the worst cell. */
+      WorstCell
+      quality_table(const std::vector<mesh::BodyStatistics> &stats,
+                    std::ostream                            &table)
+      {
+        table << "body,material_id,cells,vertices,measure,min_scaled_jacobian,"
+                 "max_aspect_ratio\n";
+        WorstCell worst;
+        for (const auto &s : stats)
+          {
+            table << mesh::ids::body_name(s.material_id) << ',' << s.material_id
+                  << ',' << s.n_cells << ',' << s.n_vertices << ','
+                  << std::setprecision(12) << s.measure << ','
+                  << s.min_scaled_jacobian << ',' << s.max_aspect_ratio << '\n';
+            if (s.min_scaled_jacobian < worst.jacobian)
+              worst = {s.min_scaled_jacobian,
+                       mesh::ids::body_name(s.material_id),
+                       s.worst_cell};
+          }
+        return worst;
+      }
+
+      /** @brief The console's summary of the bodies. */
+      struct BodySummary
+      {
+        unsigned int disc_cells = 0, pin_cells = 0, housing_cells = 0;
+        double       max_aspect = 1;
+        /** One line a disc and the housing, one for all pins. */
+        std::string per_body;
+      };
+
+      /** The cells of each kind of body, the largest aspect ratio and a
+       * line a body (the pins' range in one). */
+      BodySummary
+      summarise_bodies(const std::vector<mesh::BodyStatistics> &stats)
+      {
+        BodySummary        summary;
+        unsigned int       pin_min = ~0u, pin_max = 0;
+        std::ostringstream per_body;
+        for (const auto &s : stats)
+          if (mesh::ids::is_pin(s.material_id))
+            {
+              pin_min = std::min(pin_min, s.n_cells);
+              pin_max = std::max(pin_max, s.n_cells);
+            }
+          else
+            per_body << "\n    " << mesh::ids::body_name(s.material_id) << ": "
+                     << s.n_cells << " cells, " << s.n_vertices
+                     << " vertices, min scaled Jacobian "
+                     << s.min_scaled_jacobian;
+        per_body << "\n    each pin: " << pin_min << " to " << pin_max
+                 << " cells";
+        for (const auto &s : stats)
+          {
+            (mesh::ids::is_disc(s.material_id) ? summary.disc_cells :
+             mesh::ids::is_pin(s.material_id)  ? summary.pin_cells :
+                                                 summary.housing_cells) +=
+              s.n_cells;
+            summary.max_aspect =
+              std::max(summary.max_aspect, s.max_aspect_ratio);
+          }
+        summary.per_body = per_body.str();
+        return summary;
+      }
     } // namespace
 
 
@@ -97,55 +170,15 @@ namespace cycloid
       postprocess::write_mesh_vtu(tria, dir, "mesh", comm);
 
       std::ostringstream table;
-      table << "body,material_id,cells,vertices,measure,min_scaled_jacobian,"
-               "max_aspect_ratio\n";
-      double           worst_jacobian = 1;
-      std::string      worst_body;
-      dealii::Point<3> worst_cell;
-      for (const auto &s : stats)
-        {
-          table << mesh::ids::body_name(s.material_id) << ',' << s.material_id
-                << ',' << s.n_cells << ',' << s.n_vertices << ','
-                << std::setprecision(12) << s.measure << ','
-                << s.min_scaled_jacobian << ',' << s.max_aspect_ratio << '\n';
-          if (s.min_scaled_jacobian < worst_jacobian)
-            {
-              worst_jacobian = s.min_scaled_jacobian;
-              worst_body     = mesh::ids::body_name(s.material_id);
-              worst_cell     = s.worst_cell;
-            }
-        }
+      const WorstCell    worst = quality_table(stats, table);
       if (root)
         {
           std::ofstream(dir + "/mesh.csv") << table.str();
-          unsigned int       disc_cells = 0, pin_cells = 0, housing_cells = 0;
-          unsigned int       pin_min = ~0u, pin_max = 0;
-          double             max_aspect = 1;
-          std::ostringstream per_body;
-          for (const auto &s : stats)
-            if (mesh::ids::is_pin(s.material_id))
-              {
-                pin_min = std::min(pin_min, s.n_cells);
-                pin_max = std::max(pin_max, s.n_cells);
-              }
-            else
-              per_body << "\n    " << mesh::ids::body_name(s.material_id)
-                       << ": " << s.n_cells << " cells, " << s.n_vertices
-                       << " vertices, min scaled Jacobian "
-                       << s.min_scaled_jacobian;
-          per_body << "\n    each pin: " << pin_min << " to " << pin_max
-                   << " cells";
-          for (const auto &s : stats)
-            {
-              (mesh::ids::is_disc(s.material_id) ? disc_cells :
-               mesh::ids::is_pin(s.material_id)  ? pin_cells :
-                                                   housing_cells) += s.n_cells;
-              max_aspect = std::max(max_aspect, s.max_aspect_ratio);
-            }
+          const BodySummary b = summarise_bodies(stats);
           std::cout << "cycloid-contact: " << dim << "D mesh of "
                     << scene.n_discs << " disc(s), "
                     << settings.mesh.geometry.n_pins << " pins"
-                    << (housing_cells > 0 ? ", housing" : "")
+                    << (b.housing_cells > 0 ? ", housing" : "")
                     << " at crank angle "
                     << settings.request.crank_angle *
                          results::units::deg_per_rad
@@ -153,24 +186,24 @@ namespace cycloid
                     << dealii::Utilities::MPI::n_mpi_processes(comm)
                     << " rank(s) (METIS partition)\n"
                     << "  cells: " << tria.n_active_cells() << " (discs "
-                    << disc_cells << ", pins " << pin_cells << ", housing "
-                    << housing_cells << "), vertices " << tria.n_vertices()
-                    << per_body.str() << "\n  quality: min scaled Jacobian "
-                    << worst_jacobian << " (" << worst_body << ", cell at "
-                    << worst_cell << "), max aspect ratio " << max_aspect
+                    << b.disc_cells << ", pins " << b.pin_cells << ", housing "
+                    << b.housing_cells << "), vertices " << tria.n_vertices()
+                    << b.per_body << "\n  quality: min scaled Jacobian "
+                    << worst.jacobian << " (" << worst.body << ", cell at "
+                    << worst.centre << "), max aspect ratio " << b.max_aspect
                     << "\n  generated in " << seconds << " s; written " << dir
                     << "/mesh.pvtu, "
                     << "mesh_boundary.pvtu, mesh.csv\n"
                     << cost << std::endl;
         }
       AssertThrow(
-        worst_jacobian > 1e-3,
+        worst.jacobian > 1e-3,
         dealii::ExcMessage(
-          "mesh: inverted or degenerate cells in " + worst_body +
-          " (worst at " + dealii::Utilities::to_string(worst_cell[0]) + ", " +
-          dealii::Utilities::to_string(worst_cell[1]) + ", " +
-          dealii::Utilities::to_string(worst_cell[2]) + " mm)" +
-          " (minimum scaled Jacobian " + std::to_string(worst_jacobian) +
+          "mesh: inverted or degenerate cells in " + worst.body +
+          " (worst at " + dealii::Utilities::to_string(worst.centre[0]) + ", " +
+          dealii::Utilities::to_string(worst.centre[1]) + ", " +
+          dealii::Utilities::to_string(worst.centre[2]) + " mm)" +
+          " (minimum scaled Jacobian " + std::to_string(worst.jacobian) +
           "). Reduce the Mesh element sizes or the Size grading; "
           "the mesh was written to " +
           dir +

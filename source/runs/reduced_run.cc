@@ -54,10 +54,9 @@ namespace cycloid
 
 
     template <int dim>
-    void
-    ReducedRun<dim>::run()
+    postprocess::Report::Options
+    ReducedRun<dim>::report_options() const
     {
-      const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
       postprocess::Report::Options options;
       options.directory = settings.model.stage.output_directory;
       // No contact mesh, so no mesh-to-mesh noise between crank angles:
@@ -70,7 +69,74 @@ namespace cycloid
       options.rated_torque = settings.loading.rated_torque;
       options.lost_motion_fraction =
         parameters::LoadingParameters::lost_motion_torque;
-      postprocess::Report       report(options, comm);
+      return options;
+    }
+
+
+
+    template <int dim>
+    std::unique_ptr<reduced::CompliancePath<dim>>
+    ReducedRun<dim>::compliance_path(reduced::CoarseModel<dim> &coarse,
+                                     const std::vector<double> &angles,
+                                     std::ostream              *progress) const
+    {
+      // A sweep of more crank angles than anchors condenses at the anchors
+      // only and interpolates the compliance in between.
+      const unsigned int n_anchors = settings.model.reduced.anchor_angles;
+      if (n_anchors < 2 || n_anchors >= angles.size())
+        return nullptr;
+      std::vector<double> anchors;
+      for (unsigned int a = 0; a < n_anchors; ++a)
+        anchors.push_back(angles.front() + (angles.back() - angles.front()) *
+                                             a / (n_anchors - 1));
+      if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+        std::cout << "  condensing at " << n_anchors
+                  << " anchor angles, interpolated over " << angles.size()
+                  << " crank angles" << std::endl;
+      return std::make_unique<reduced::CompliancePath<dim>>(
+        settings.model, coarse, anchors, angles, load_sign(), progress);
+    }
+
+
+
+    template <int dim>
+    analytic::LoadState
+    ReducedRun<dim>::solve_state(reduced::ReducedModel<dim> &phase,
+                                 const std::vector<double>  &torques,
+                                 const unsigned int          t,
+                                 const double                crank_angle,
+                                 const unsigned int          step,
+                                 const double                beta) const
+    {
+      try
+        {
+          return settings.loading.torque_cycle && torques[t] == 0 ?
+                   phase.zero_torque_limit(
+                     parameters::LoadingParameters::zero_side(torques, t)) :
+                   phase.solve(torques[t], beta);
+        }
+      catch (dealii::ExceptionBase &e)
+        {
+          std::ostringstream info;
+          e.print_info(info);
+          AssertThrow(false,
+                      dealii::ExcMessage(
+                        "state " + std::to_string(step) + " (crank angle " +
+                        std::to_string(crank_angle * u::deg_per_rad) +
+                        " deg, torque " + std::to_string(torques[t]) +
+                        " N m): " + info.str()));
+        }
+      return {};
+    }
+
+
+
+    template <int dim>
+    void
+    ReducedRun<dim>::run()
+    {
+      const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      postprocess::Report       report(report_options(), comm);
       const std::vector<double> angles =
         settings.loading.crank_angles(model.geometry().mesh_period());
       const std::vector<double> torques  = settings.loading.torque_values();
@@ -97,26 +163,9 @@ namespace cycloid
                   << mesh_s << " s" << std::endl;
       // A long condensation (3D) shows its progress.
       std::ostream *progress = root && dim == 3 ? &std::cout : nullptr;
-      // A sweep of more crank angles than anchors condenses at the anchors
-      // only and interpolates the compliance in between.
-      const unsigned int n_anchors = settings.model.reduced.anchor_angles;
-      std::unique_ptr<reduced::CompliancePath<dim>> path;
-      if (n_anchors >= 2 && n_anchors < angles.size())
-        {
-          std::vector<double> anchors;
-          for (unsigned int a = 0; a < n_anchors; ++a)
-            anchors.push_back(angles.front() +
-                              (angles.back() - angles.front()) * a /
-                                (n_anchors - 1));
-          if (root)
-            std::cout << "  condensing at " << n_anchors
-                      << " anchor angles, interpolated over " << angles.size()
-                      << " crank angles" << std::endl;
-          path = std::make_unique<reduced::CompliancePath<dim>>(
-            settings.model, coarse, anchors, angles, load_sign(), progress);
-        }
-      unsigned int step = 0;
-      double       beta = 0;
+      const auto    path     = compliance_path(coarse, angles, progress);
+      unsigned int  step     = 0;
+      double        beta     = 0;
       for (unsigned int k = 0; k < angles.size(); ++k)
         {
           auto       start_angle = Clock::now();
@@ -137,28 +186,9 @@ namespace cycloid
                       << phase->compliance().asymmetry << ")" << std::endl;
           for (unsigned int t = 0; t < torques.size(); ++t, ++step)
             {
-              const auto          start_state = Clock::now();
-              analytic::LoadState load;
-              try
-                {
-                  load =
-                    settings.loading.torque_cycle && torques[t] == 0 ?
-                      phase->zero_torque_limit(
-                        parameters::LoadingParameters::zero_side(torques, t)) :
-                      phase->solve(torques[t], beta);
-                }
-              catch (dealii::ExceptionBase &e)
-                {
-                  std::ostringstream info;
-                  e.print_info(info);
-                  AssertThrow(false,
-                              dealii::ExcMessage(
-                                "state " + std::to_string(step) +
-                                " (crank angle " +
-                                std::to_string(angles[k] * u::deg_per_rad) +
-                                " deg, torque " + std::to_string(torques[t]) +
-                                " N m): " + info.str()));
-                }
+              const auto                start_state = Clock::now();
+              const analytic::LoadState load =
+                solve_state(*phase, torques, t, angles[k], step, beta);
               beta                      = load.rotation;
               results::StageState state = phase->stage_state(load);
               state.step                = step;

@@ -2,9 +2,13 @@
 #define cycloid_runs_reduced_run_h
 
 #include <cycloid/parameters/loading.h>
+#include <cycloid/postprocess/report.h>
 #include <cycloid/reduced/reduced_model.h>
 
+#include <memory>
+#include <ostream>
 #include <string>
+#include <vector>
 
 #include <mpi.h>
 
@@ -41,6 +45,31 @@ namespace cycloid
       /** The side(s) the torques load: +1, -1, or 0 for both. */
       int
       load_sign() const;
+
+      /** The report's options: a reduced run's states are not
+       * discretised (no contact mesh), and the torque cycle's. */
+      postprocess::Report::Options
+      report_options() const;
+
+      /** The interpolated compliance over @p angles if the sweep has more
+       * crank angles than `Reduced/Anchor angles` (condensed at the
+       * anchors, with @p progress), else null. */
+      std::unique_ptr<reduced::CompliancePath<dim>>
+      compliance_path(reduced::CoarseModel<dim> &coarse,
+                      const std::vector<double> &angles,
+                      std::ostream              *progress) const;
+
+      /** Torque @p t of @p torques at @p crank_angle [rad] on @p phase,
+       * from the rotation @p beta of the state before [rad] (a torque
+       * cycle's zero: the limit from its side); an error names state
+       * @p step, the crank angle and the torque. */
+      analytic::LoadState
+      solve_state(reduced::ReducedModel<dim> &phase,
+                  const std::vector<double>  &torques,
+                  const unsigned int          t,
+                  const double                crank_angle,
+                  const unsigned int          step,
+                  const double                beta) const;
 
       const Settings             settings;
       const MPI_Comm             comm;
