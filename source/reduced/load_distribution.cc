@@ -137,6 +137,91 @@ namespace cycloid
 
 
 
+    std::vector<unsigned int>
+    ComplementaritySolver::first_active_set(const double torque,
+                                            const double beta_guess) const
+    {
+      const unsigned int        n = pairs.size();
+      std::vector<unsigned int> active;
+      for (unsigned int i = 0; i < n; ++i)
+        if (rigid_gap(i, beta_guess).first < 0 && beta_guess * torque > 0)
+          active.push_back(i);
+      if (!active.empty())
+        return active;
+      // The contact with the smallest clearance per arm on the loaded side
+      // closes first.
+      unsigned int best = n;
+      for (unsigned int i = 0; i < n; ++i)
+        if (pairs[i].arm * torque > 0 &&
+            (best == n || pairs[i].clearance / std::abs(pairs[i].arm) <
+                            pairs[best].clearance / std::abs(pairs[best].arm)))
+          best = i;
+      AssertThrow(best < n,
+                  dealii::ExcMessage("reduced model: no contact can "
+                                     "carry a torque of this sign."));
+      return {best};
+    }
+
+
+
+    std::vector<unsigned int>
+    ComplementaritySolver::next_active_set(
+      const std::vector<unsigned int> &active,
+      const std::vector<double>       &F,
+      const double                     beta) const
+    {
+      const unsigned int        n = pairs.size();
+      std::vector<unsigned int> next;
+      std::vector<bool>         is_active(n, false);
+      for (const unsigned int i : active)
+        is_active[i] = true;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          if (is_active[i])
+            {
+              if (F[i] > 0)
+                next.push_back(i);
+              continue;
+            }
+          double gap = rigid_gap(i, beta).first;
+          for (const unsigned int j : active)
+            gap += C(i, j) * F[j];
+          if (gap < 0)
+            next.push_back(i);
+        }
+      return next;
+    }
+
+
+
+    double
+    ComplementaritySolver::tangent_stiffness(
+      const std::vector<unsigned int> &active,
+      const std::vector<double>       &F,
+      const double                     floor,
+      const double                     beta) const
+    {
+      const unsigned int               m = active.size();
+      dealii::LAPACKFullMatrix<double> J(m, m);
+      dealii::Vector<double>           l(m), x(m);
+      for (unsigned int a = 0; a < m; ++a)
+        {
+          for (unsigned int b = 0; b < m; ++b)
+            J(a, b) = C(active[a], active[b]);
+          J(a, a) += slope(active[a], F[active[a]], floor);
+          l(a) = rigid_gap(active[a], beta).second;
+        }
+      J.compute_lu_factorization();
+      x = l;
+      J.solve(x);
+      double k = l * x;
+      for (const unsigned int i : active)
+        k += F[i] * arm_slope(i, beta);
+      return k;
+    }
+
+
+
     ReducedSolution
     ComplementaritySolver::solve(const double torque,
                                  const double beta_guess) const
@@ -153,26 +238,7 @@ namespace cycloid
         arms += std::abs(p.arm);
       const double floor = 1e-9 * std::abs(torque) / arms;
 
-      std::vector<unsigned int> active;
-      for (unsigned int i = 0; i < n; ++i)
-        if (rigid_gap(i, beta_guess).first < 0 && beta_guess * torque > 0)
-          active.push_back(i);
-      if (active.empty())
-        {
-          // The contact with the smallest clearance per arm on the loaded
-          // side closes first.
-          unsigned int best = n;
-          for (unsigned int i = 0; i < n; ++i)
-            if (pairs[i].arm * torque > 0 &&
-                (best == n ||
-                 pairs[i].clearance / std::abs(pairs[i].arm) <
-                   pairs[best].clearance / std::abs(pairs[best].arm)))
-              best = i;
-          AssertThrow(best < n,
-                      dealii::ExcMessage("reduced model: no contact can "
-                                         "carry a torque of this sign."));
-          active.push_back(best);
-        }
+      std::vector<unsigned int> active = first_active_set(torque, beta_guess);
       std::set<std::vector<unsigned int>> seen;
       std::vector<double>                 F(n, 0.);
       // Start from one force on every active contact that carries the
@@ -191,24 +257,8 @@ namespace cycloid
                         std::to_string(seen.size()) + " sets)."));
           s.iterations += newton(active, torque, floor, F, s.rotation);
           ++s.active_sets;
-          std::vector<unsigned int> next;
-          std::vector<bool>         is_active(n, false);
-          for (const unsigned int i : active)
-            is_active[i] = true;
-          for (unsigned int i = 0; i < n; ++i)
-            {
-              if (is_active[i])
-                {
-                  if (F[i] > 0)
-                    next.push_back(i);
-                  continue;
-                }
-              double gap = rigid_gap(i, s.rotation).first;
-              for (const unsigned int j : active)
-                gap += C(i, j) * F[j];
-              if (gap < 0)
-                next.push_back(i);
-            }
+          const std::vector<unsigned int> next =
+            next_active_set(active, F, s.rotation);
           if (next == active)
             break;
           for (unsigned int i = 0; i < n; ++i)
@@ -221,26 +271,7 @@ namespace cycloid
                       dealii::ExcMessage("reduced model: every contact left "
                                          "the active set."));
         }
-
-      // Tangent dT/dbeta = l^T (C + H')^-1 l on the final set.
-      const unsigned int               m = active.size();
-      dealii::LAPACKFullMatrix<double> J(m, m);
-      dealii::Vector<double>           l(m), x(m);
-      for (unsigned int a = 0; a < m; ++a)
-        {
-          for (unsigned int b = 0; b < m; ++b)
-            J(a, b) = C(active[a], active[b]);
-          J(a, a) += slope(active[a], F[active[a]], floor);
-          l(a) = rigid_gap(active[a], s.rotation).second;
-        }
-      J.compute_lu_factorization();
-      x = l;
-      J.solve(x);
-      // dT/dbeta with the gaps held closed: l^T (C + H')^-1 l, plus the
-      // turning of the arms as the contact points slide.
-      s.k_tangent = l * x;
-      for (const unsigned int i : active)
-        s.k_tangent += F[i] * arm_slope(i, s.rotation);
+      s.k_tangent = tangent_stiffness(active, F, floor, s.rotation);
       for (unsigned int i = 0; i < n; ++i)
         {
           s.force[i] = std::max(F[i], 0.);

@@ -107,6 +107,29 @@ namespace cycloid
              std::vector<double>             &F,
              double                          &beta) const;
 
+      /** The contacts closed by the rigid rotation @p beta_guess [rad]
+       * under @p torque [N mm], or else the one with the smallest
+       * clearance per arm on the loaded side. */
+      std::vector<unsigned int>
+      first_active_set(const double torque, const double beta_guess) const;
+
+      /** The set after @p active with forces @p F [N] at rotation @p beta
+       * [rad]: the active contacts that still push, and the open ones
+       * whose gap the forces close. */
+      std::vector<unsigned int>
+      next_active_set(const std::vector<unsigned int> &active,
+                      const std::vector<double>       &F,
+                      const double                     beta) const;
+
+      /** dT/dbeta [N mm/rad] on the final set @p active with forces @p F:
+       * l^T (C + H')^-1 l with the gaps held closed, plus the turning of
+       * the arms as the contact points slide. */
+      double
+      tangent_stiffness(const std::vector<unsigned int> &active,
+                        const std::vector<double>       &F,
+                        const double                     floor,
+                        const double                     beta) const;
+
       const dealii::FullMatrix<double> C;
       const std::vector<ContactPair>   pairs;
       const double                     tolerance;
