@@ -78,6 +78,46 @@ namespace cycloid
 
 
 
+    namespace
+    {
+      /**
+       * @brief Where each rank's rows lie in a gather of k columns: each
+       * rank sends its rows of every column in turn, so rank r's block
+       * starts at offsets[r] * k.
+       */
+      struct BlockLayout
+      {
+        /** First gathered row of each rank (and the total, last). */
+        std::vector<std::size_t> offsets;
+        /** MPI's counts and displacements of the k-column blocks. */
+        std::vector<int> counts, displs;
+
+        BlockLayout(const std::vector<int> &owned_counts, const std::size_t k)
+          : offsets(owned_counts.size() + 1, 0)
+          , counts(owned_counts.size())
+          , displs(owned_counts.size())
+        {
+          for (unsigned int r = 0; r < owned_counts.size(); ++r)
+            {
+              offsets[r + 1] = offsets[r] + owned_counts[r];
+              counts[r]      = owned_counts[r] * k;
+              displs[r]      = offsets[r] * k;
+            }
+        }
+
+        /** Position of gathered row @p g of column @p c, rank @p r's, in
+         * the gathered array. */
+        std::size_t
+        at(const unsigned int r, const std::size_t c, const std::size_t g) const
+        {
+          return displs[r] + c * (offsets[r + 1] - offsets[r]) +
+                 (g - offsets[r]);
+        }
+      };
+    } // namespace
+
+
+
     void
     RootColumns::reinit(const std::vector<int> &my_rows, const MPI_Comm c)
     {
@@ -85,37 +125,19 @@ namespace cycloid
       const int n_mine = my_rows.size();
       owned_counts.assign(dealii::Utilities::MPI::n_mpi_processes(comm), 0);
       MPI_Allgather(&n_mine, 1, MPI_INT, owned_counts.data(), 1, MPI_INT, comm);
-      std::vector<int> offsets(owned_counts.size() + 1, 0);
-      for (unsigned int r = 0; r < owned_counts.size(); ++r)
-        offsets[r + 1] = offsets[r] + owned_counts[r];
+      const BlockLayout layout(owned_counts, 1);
       const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-      rows.assign(root ? offsets.back() : 0, 0);
+      rows.assign(root ? layout.offsets.back() : 0, 0);
       MPI_Gatherv(my_rows.data(),
                   n_mine,
                   MPI_INT,
                   rows.data(),
-                  owned_counts.data(),
-                  offsets.data(),
+                  layout.counts.data(),
+                  layout.displs.data(),
                   MPI_INT,
                   0,
                   comm);
     }
-
-
-
-    namespace
-    {
-      /** Where rank r's block starts in a gather of k columns (each rank
-       * sends its rows of every column in turn). */
-      std::vector<std::size_t>
-      rank_offsets(const std::vector<int> &counts)
-      {
-        std::vector<std::size_t> offsets(counts.size() + 1, 0);
-        for (unsigned int r = 0; r < counts.size(); ++r)
-          offsets[r + 1] = offsets[r] + counts[r];
-        return offsets;
-      }
-    } // namespace
 
 
 
@@ -136,31 +158,25 @@ namespace cycloid
                                          "are not the matrix's"));
           local.insert(local.end(), bv[0], bv[0] + my_rows);
         }
-      const auto       offsets = rank_offsets(owned_counts);
-      std::vector<int> counts(owned_counts.size()), displs(owned_counts.size());
-      for (unsigned int r = 0; r < owned_counts.size(); ++r)
-        {
-          counts[r] = owned_counts[r] * k;
-          displs[r] = offsets[r] * k;
-        }
+      const BlockLayout   layout(owned_counts, k);
       const std::size_t   n = rows.size();
       std::vector<double> gathered(n * k);
       MPI_Gatherv(local.data(),
                   local.size(),
                   MPI_DOUBLE,
                   gathered.data(),
-                  counts.data(),
-                  displs.data(),
+                  layout.counts.data(),
+                  layout.displs.data(),
                   MPI_DOUBLE,
                   0,
                   comm);
       // Into the global row order, column after column.
       std::vector<double> ordered(n * k);
-      for (unsigned int r = 0; r + 1 < offsets.size() && n > 0; ++r)
+      for (unsigned int r = 0; r < owned_counts.size() && n > 0; ++r)
         for (std::size_t c = 0; c < k; ++c)
-          for (std::size_t g = offsets[r]; g < offsets[r + 1]; ++g)
-            ordered[c * n + rows[g]] =
-              gathered[offsets[r] * k + c * owned_counts[r] + (g - offsets[r])];
+          for (std::size_t g = layout.offsets[r]; g < layout.offsets[r + 1];
+               ++g)
+            ordered[c * n + rows[g]] = gathered[layout.at(r, c, g)];
       return ordered;
     }
 
@@ -175,23 +191,17 @@ namespace cycloid
       const int           my_rows = owned_counts[me];
       const std::size_t   k       = x.size();
       const std::size_t   n       = rows.size();
-      const auto          offsets = rank_offsets(owned_counts);
+      const BlockLayout   layout(owned_counts, k);
       std::vector<double> solution(n * k);
-      for (unsigned int r = 0; r + 1 < offsets.size() && n > 0; ++r)
+      for (unsigned int r = 0; r < owned_counts.size() && n > 0; ++r)
         for (std::size_t c = 0; c < k; ++c)
-          for (std::size_t g = offsets[r]; g < offsets[r + 1]; ++g)
-            solution[offsets[r] * k + c * owned_counts[r] + (g - offsets[r])] =
-              columns[c * n + rows[g]];
-      std::vector<int> counts(owned_counts.size()), displs(owned_counts.size());
-      for (unsigned int r = 0; r < owned_counts.size(); ++r)
-        {
-          counts[r] = owned_counts[r] * k;
-          displs[r] = offsets[r] * k;
-        }
+          for (std::size_t g = layout.offsets[r]; g < layout.offsets[r + 1];
+               ++g)
+            solution[layout.at(r, c, g)] = columns[c * n + rows[g]];
       std::vector<double> mine(my_rows * k);
       MPI_Scatterv(solution.data(),
-                   counts.data(),
-                   displs.data(),
+                   layout.counts.data(),
+                   layout.displs.data(),
                    MPI_DOUBLE,
                    mine.data(),
                    mine.size(),
