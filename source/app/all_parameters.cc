@@ -179,10 +179,10 @@ namespace cycloid
       }
       dealii::ParameterHandler prm;
       declare_parameters(prm);
-      parse_input_explained(prm, filename);
       AllParameters result;
+      record_entries_set(prm, result.set_in_file);
+      parse_input_explained(prm, filename);
       result.parse_parameters(prm);
-      result.set_in_file = entries_set_in(filename);
       dealii::ParameterHandler defaults;
       declare_parameters(defaults);
       for (const auto &entry : result.set_in_file)
@@ -207,6 +207,19 @@ namespace cycloid
                              dealii::ParameterHandler::KeepDeclarationOrder);
       result.parameter_file = text.str();
       return result;
+    }
+
+
+
+    std::map<std::string, std::string>
+    entries_set_in(const std::string &filename)
+    {
+      dealii::ParameterHandler prm;
+      AllParameters::declare_parameters(prm);
+      std::map<std::string, std::string> set;
+      record_entries_set(prm, set);
+      parse_input_explained(prm, filename);
+      return set;
     }
   } // namespace app
 } // namespace cycloid

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -172,6 +173,31 @@ namespace cycloid
       std::vector<std::string> result;
       for (std::size_t k = 0; k < scored.size() && k < n_max; ++k)
         result.push_back(candidates[scored[k].second]);
+      return result;
+    }
+
+
+
+    std::vector<std::vector<std::string>>
+    DeclaredParameters::entries() const
+    {
+      std::vector<std::vector<std::string>> result;
+      const std::function<void(const Section &, std::vector<std::string> &)>
+        walk = [&](const Section &section, std::vector<std::string> &path) {
+          for (const std::string &entry : section.entries)
+            {
+              result.push_back(path);
+              result.back().push_back(entry);
+            }
+          for (unsigned int i = 0; i < section.names.size(); ++i)
+            {
+              path.push_back(section.names[i]);
+              walk(section.children[i], path);
+              path.pop_back();
+            }
+        };
+      std::vector<std::string> path;
+      walk(top, path);
       return result;
     }
 
@@ -393,33 +419,27 @@ namespace cycloid
 
 
 
-    std::map<std::string, std::string>
-    entries_set_in(const std::string &filename)
+    void
+    record_entries_set(dealii::ParameterHandler           &prm,
+                       std::map<std::string, std::string> &set)
     {
-      std::map<std::string, std::string> names;
-      std::vector<std::string>           path;
-      for (auto [number, line] : logical_lines(filename))
+      for (const std::vector<std::string> &path :
+           DeclaredParameters(prm).entries())
         {
-          (void)number;
-          if (take_keyword(line, "subsection"))
-            path.push_back(line);
-          else if (line == "end" || line == "END")
+          std::string key;
+          for (unsigned int i = 0; i + 1 < path.size(); ++i)
             {
-              if (!path.empty())
-                path.pop_back();
+              prm.enter_subsection(path[i]);
+              key += path[i] + "/";
             }
-          else if (take_keyword(line, "set") &&
-                   line.find('=') != std::string::npos)
-            {
-              std::string name;
-              for (const std::string &s : path)
-                name += s + "/";
-              const auto eq = line.find('=');
-              names[name + dealii::Utilities::trim(line.substr(0, eq))] =
-                dealii::Utilities::trim(line.substr(eq + 1));
-            }
+          key += path.back();
+          prm.add_action(path.back(), [&set, key](const std::string &value) {
+            set[key] = value;
+          });
+          for (unsigned int i = 0; i + 1 < path.size(); ++i)
+            prm.leave_subsection();
         }
-      return names;
+      set.clear();
     }
 
 

@@ -129,6 +129,17 @@ namespace cycloid
         return {geometry, scene, mesh};
       }
     };
+
+    /**
+     * The entries that the parameter file @p filename sets, as
+     * "Subsection/Entry" ("Entry" at the top level, "A/B/Entry" in a
+     * nested subsection), each with its value as deal.II read it (the last
+     * one if the file sets an entry twice): the file parsed against every
+     * declaration with record_entries_set(). AllParameters::read() records
+     * the same while it parses.
+     */
+    std::map<std::string, std::string>
+    entries_set_in(const std::string &filename);
   } // namespace app
 } // namespace cycloid
 

@@ -53,6 +53,14 @@ namespace cycloid
               const std::vector<std::string> &candidates,
               const unsigned int              n_max = 3);
 
+      /**
+       * Every declared entry, as its subsection path followed by its name
+       * ({"Mesh", "Contact refinements"}), subsections depth first, each in
+       * declaration order.
+       */
+      std::vector<std::vector<std::string>>
+      entries() const;
+
     private:
       /** One subsection: its entries (with their patterns) and children. */
       struct Section
@@ -124,16 +132,21 @@ namespace cycloid
     logical_lines(const std::string &filename);
 
     /**
-     * The entries that the parameter file @p filename sets, as
-     * "Subsection/Entry" ("Entry" at the top level, "A/B/Entry" in a
-     * nested subsection), each with its value as written (the last one if
-     * the file sets an entry twice). deal.II's ParameterHandler does not tell
-     * whether a value came from the file or is the default; this walks the
-     * file's `subsection`, `end` and `set` lines (a file that parse_input()
-     * accepted, so every name is declared).
+     * Record the entries a parameter file sets: attach to every entry that
+     * @p prm declares an action (ParameterHandler::add_action()) that
+     * stores its value in @p set under "Subsection/Entry" ("Entry" at the
+     * top level, "A/B/Entry" in a nested subsection) whenever
+     * parse_input() (or set()) gives it one. deal.II does not otherwise tell
+     * whether a value came from the file or is the default; the actions see
+     * what deal.II read, `include`d files and continuation lines as well.
+     * deal.II runs each action once with the default when it is attached;
+     * @p set is cleared after that, so after parsing it holds exactly the
+     * entries set, each with its last value. @p set must outlive @p prm's
+     * parsing.
      */
-    std::map<std::string, std::string>
-    entries_set_in(const std::string &filename);
+    void
+    record_entries_set(dealii::ParameterHandler           &prm,
+                       std::map<std::string, std::string> &set);
   } // namespace app
 } // namespace cycloid
 
