@@ -149,64 +149,16 @@ namespace cycloid
                         " iterations (Contact/Maximum active set iterations) "
                         "at " +
                         label + "."));
-          clock.restart();
-          const unsigned int builds = problem.n_preconditioner_builds();
-          if (!assembled && !use_schur)
-            assemble(solution.active);
-          if (!assembled)
-            ++state.iterations;
-          const double t_assemble = clock.wall_time();
-          const double m_assemble = resident_MB();
-          const double p_assemble = peak_MB();
-          if (!use_schur)
-            setup_preconditioner();
-          const double t_preconditioner = clock.wall_time();
-          const double m_preconditioner = resident_MB();
-          const double p_preconditioner = peak_MB();
-          if (use_schur)
-            {
-              // Exact solves: a set solved once needs no second look.
-              const OptionalScope scope(timer, "contact: linear solves");
-              if (!assembled)
-                schur->solve_set(problem,
-                                 contact_lines(solution.active),
-                                 u0,
-                                 u1);
-              n0 = n1 = 0;
-            }
-          else
-            // A cycle's union is solved 100 times tighter: the nodes that
-            // came and went carry forces at the level of CG's residual.
-            solve_linear_systems((tight ? settings.solver_tolerance : loose) *
-                                   (cycle_union ? cycle_tightening : 1.),
-                                 state);
-          state.preconditioner_setups +=
-            problem.n_preconditioner_builds() - builds;
-          if (verbose)
-            std::cerr << "  [active set] " << label << ", iteration " << it
-                      << (tight ? std::string(" (tight)") :
-                                  " (loose " + tolerance_label(loose) + ")")
-                      << ": constraints+assembly " << t_assemble
-                      << " s, preconditioner " << t_preconditioner - t_assemble
-                      << " s, solves " << clock.wall_time() - t_preconditioner
-                      << " s / " << n0 << " + " << n1 << " it, "
-                      << problem.n_preconditioner_builds() - builds << " builds"
-                      << (use_schur ?
-                            ", Schur complement: " +
-                              std::to_string(schur->n_columns()) +
-                              " columns kept, " +
-                              std::to_string(schur->n_new_columns()) +
-                              " new, " +
-                              std::to_string(schur->n_evictions_so_far()) +
-                              " evictions" :
-                            std::string())
-                      << "; rank 0 resident after assembly " << m_assemble
-                      << " MB, preconditioner " << m_preconditioner
-                      << " MB, solves " << resident_MB() << " MB, heap in use "
-                      << in_use_MB() << " MB, peak " << peak_MB() << " MB; "
-                      << heap_layout() << "; peak after assembly " << p_assemble
-                      << " MB, after preconditioner " << p_preconditioner
-                      << " MB" << std::endl;
+          // A cycle's union is solved 100 times tighter: the nodes that
+          // came and went carry forces at the level of CG's residual.
+          solve_iterate(solution.active,
+                        assembled,
+                        (tight ? settings.solver_tolerance : loose) *
+                          (cycle_union ? cycle_tightening : 1.),
+                        label + ", iteration " + std::to_string(it) +
+                          (tight ? std::string(" (tight)") :
+                                   " (loose " + tolerance_label(loose) + ")"),
+                        state);
 
           if (!tight)
             loose = std::max(loose * loose_tightening, tightest);
@@ -264,6 +216,65 @@ namespace cycloid
       finish(label, state, solution);
       keep_start(solution);
       return state;
+    }
+
+
+
+    template <int dim>
+    void
+    ActiveSetSolver<dim>::solve_iterate(const std::set<unsigned int> &active,
+                                        const bool         assembled,
+                                        const double       tolerance,
+                                        const std::string &iteration,
+                                        ContactState      &state)
+    {
+      clock.restart();
+      const unsigned int builds = problem.n_preconditioner_builds();
+      if (!assembled && !use_schur)
+        assemble(active);
+      if (!assembled)
+        ++state.iterations;
+      const double t_assemble = clock.wall_time();
+      const double m_assemble = resident_MB();
+      const double p_assemble = peak_MB();
+      if (!use_schur)
+        setup_preconditioner();
+      const double t_preconditioner = clock.wall_time();
+      const double m_preconditioner = resident_MB();
+      const double p_preconditioner = peak_MB();
+      if (use_schur)
+        {
+          // Exact solves: a set solved once needs no second look.
+          const OptionalScope scope(timer, "contact: linear solves");
+          if (!assembled)
+            schur->solve_set(problem, contact_lines(active), u0, u1);
+          n0 = n1 = 0;
+        }
+      else
+        solve_linear_systems(tolerance, state);
+      state.preconditioner_setups += problem.n_preconditioner_builds() - builds;
+      if (!verbose)
+        return;
+      std::cerr << "  [active set] " << iteration << ": constraints+assembly "
+                << t_assemble << " s, preconditioner "
+                << t_preconditioner - t_assemble << " s, solves "
+                << clock.wall_time() - t_preconditioner << " s / " << n0
+                << " + " << n1 << " it, "
+                << problem.n_preconditioner_builds() - builds << " builds"
+                << (use_schur ?
+                      ", Schur complement: " +
+                        std::to_string(schur->n_columns()) + " columns kept, " +
+                        std::to_string(schur->n_new_columns()) + " new, " +
+                        std::to_string(schur->n_evictions_so_far()) +
+                        " evictions" :
+                      std::string())
+                << "; rank 0 resident after assembly " << m_assemble
+                << " MB, preconditioner " << m_preconditioner
+                << " MB, solves " << resident_MB() << " MB, heap in use "
+                << in_use_MB() << " MB, peak " << peak_MB() << " MB; "
+                << heap_layout() << "; peak after assembly " << p_assemble
+                << " MB, after preconditioner " << p_preconditioner << " MB"
+                << std::endl;
     }
 
 

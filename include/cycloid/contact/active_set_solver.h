@@ -143,6 +143,22 @@ namespace cycloid
       void
       setup_preconditioner();
 
+      /**
+       * The linear part of one active-set iteration on the set @p active:
+       * its constraints and matrix (unless @p assembled, the set of the
+       * previous iteration), the preconditioner, and u0 and u1 (to the
+       * relative @p tolerance, or exactly through the Schur complement);
+       * counts the iteration and the preconditioner set-ups in @p state.
+       * With CYCLOID_DEBUG set, rank 0 prints where time and memory went,
+       * headed by @p iteration.
+       */
+      void
+      solve_iterate(const std::set<unsigned int> &active,
+                    const bool                    assembled,
+                    const double                  tolerance,
+                    const std::string            &iteration,
+                    ContactState                 &state);
+
       /** u0 (gaps, no load) and u1 (unit load) to the relative
        * @p tolerance, warm-started from the previous iteration's. */
       void
