@@ -11,6 +11,78 @@ namespace cycloid
 {
   namespace dynamics
   {
+    bool
+    CheckpointArchive::at_end() const
+    {
+      return in != nullptr &&
+             in->peek() == std::char_traits<char>::eof();
+    }
+
+
+
+    void
+    CheckpointArchive::check(const std::string &what) const
+    {
+      AssertThrow(in == nullptr || *in, dealii::ExcMessage(what));
+    }
+
+
+
+    void
+    CheckpointArchive::raw(void *data, const std::size_t size)
+    {
+      if (in != nullptr)
+        in->read(static_cast<char *>(data), size);
+      else
+        out->write(static_cast<const char *>(data), size);
+    }
+
+
+
+    void
+    CheckpointArchive::owned_count(const dealii::IndexSet &owned)
+    {
+      std::size_t n = owned.n_elements();
+      count(n);
+      check("checkpoint: the file is truncated.");
+      AssertThrow(n == owned.n_elements(),
+                  dealii::ExcMessage(
+                    "checkpoint: the mesh or the partition differs from the "
+                    "run that wrote it (restart with the same prm and the "
+                    "same number of MPI ranks)."));
+    }
+
+
+
+    void
+    CheckpointArchive::owned_entries(dealii::TrilinosWrappers::MPI::Vector &x,
+                                     const dealii::IndexSet &owned,
+                                     const dealii::IndexSet &relevant,
+                                     const MPI_Comm          comm)
+    {
+      if (!loading())
+        {
+          for (const auto i : owned)
+            {
+              double v = x[i];
+              value(v);
+            }
+          return;
+        }
+      dealii::TrilinosWrappers::MPI::Vector o(owned, comm);
+      for (const auto i : owned)
+        {
+          double v = 0;
+          value(v);
+          o[i] = v;
+        }
+      o.compress(dealii::VectorOperation::insert);
+      x.reinit(owned, relevant, comm);
+      x = o;
+    }
+
+
+
     Checkpoint::Checkpoint(const std::string &directory, const MPI_Comm comm)
       : directory(directory)
       , comm(comm)

@@ -212,165 +212,108 @@ namespace cycloid
 
     template <int dim>
     void
-    ContactDynamics<dim>::save(std::ostream &out) const
+    ContactDynamics<dim>::checkpoint(CheckpointArchive &ar)
     {
-      const auto write = [&](const double x) {
-        out.write(reinterpret_cast<const char *>(&x), sizeof(double));
-      };
-      const auto write_count = [&](const std::uint64_t n) {
-        out.write(reinterpret_cast<const char *>(&n), sizeof(n));
-      };
-      for (const double x : {beta,
-                             beta_old,
-                             applied,
-                             dt_old,
-                             totals.elastic,
-                             totals.kinetic,
-                             totals.bore_work,
-                             totals.contact_work,
-                             totals.dissipated,
-                             totals.state.reaction,
-                             totals.state.beta})
-        write(x);
-      const auto &owned = contact.elasticity().locally_owned_dofs();
-      write_count(owned.n_elements());
-      for (const Vector *x : {&u, &v, &a})
-        for (const auto i : owned)
-          write((*x)[i]);
-      write_count(record.size());
-      for (const auto &[dof, entry] : record)
+      if (ar.loading())
+        totals = StepReport();
+      for (double *x : {&beta,
+                        &beta_old,
+                        &applied,
+                        &dt_old,
+                        &totals.elastic,
+                        &totals.kinetic,
+                        &totals.bore_work,
+                        &totals.contact_work,
+                        &totals.dissipated,
+                        &totals.state.reaction,
+                        &totals.state.beta})
+        ar.value(*x);
+      const auto &el       = contact.elasticity();
+      const auto &owned    = el.locally_owned_dofs();
+      const auto &relevant = el.locally_relevant_dofs();
+      ar.owned_count(owned);
+      for (Vector *x : {&u, &v, &a})
+        ar.owned_entries(*x, owned, relevant, comm);
+      checkpoint_record(ar);
+      std::vector<dealii::types::global_dof_index> active;
+      if (!ar.loading())
         {
-          const auto &sn = entry.second;
-          write_count(dof);
-          write(entry.first);
-          write(sn.gap0);
-          for (unsigned int c = 0; c < dim; ++c)
-            {
-              write(sn.normal[c]);
-              write_count(sn.dofs[c]);
-            }
-          write_count(sn.master_dofs.size());
-          for (unsigned int a = 0; a < sn.master_dofs.size(); ++a)
-            {
-              write_count(sn.master_dofs[a]);
-              write(sn.master_coefficients[a]);
-            }
+          const std::set<dealii::types::global_dof_index> set = active_dofs();
+          active.assign(set.begin(), set.end());
         }
-      std::set<dealii::types::global_dof_index> active;
-      for (const unsigned int i : contact.active_set())
-        active.insert(contact.slave_nodes()[i].dofs[0]);
-      write_count(active.size());
-      for (const auto d : active)
-        write_count(d);
+      ar.sequence(active, [&](auto &dof) { ar.count(dof); });
+      ar.check("checkpoint: the file is truncated.");
       // CG's starts: without them the resumed run's solves would differ
-      // from the uninterrupted run's at the solver tolerance.
-      write_count(contact.warm_starts().size());
-      for (const contact::WarmStart &w : contact.warm_starts())
+      // from the uninterrupted run's at the solver tolerance. (A checkpoint
+      // of an older version ends before them: no starts.)
+      auto       &starts   = contact.warm_starts();
+      std::size_t n_starts = starts.size();
+      if (ar.loading() && ar.at_end())
+        n_starts = 0;
+      else
+        ar.count(n_starts);
+      starts.resize(n_starts);
+      for (contact::WarmStart &w : starts)
         {
-          write(w.stiffness);
-          write(w.mass);
-          for (const Vector *x : {&w.u0, &w.u1})
-            for (const auto i : owned)
-              write((*x)[i]);
+          ar.value(w.stiffness);
+          ar.value(w.mass);
+          for (Vector *x : {&w.u0, &w.u1})
+            ar.owned_entries(*x, owned, relevant, comm);
+        }
+      ar.check("checkpoint: the file is truncated.");
+      if (ar.loading())
+        {
+          const std::set<dealii::types::global_dof_index> set(active.begin(),
+                                                              active.end());
+          contact.initialise_active_set([&](const contact::SlaveNode<dim> &s) {
+            return set.count(s.dofs[0]) > 0;
+          });
         }
     }
 
 
 
     template <int dim>
-    void
-    ContactDynamics<dim>::load(std::istream &in)
+    std::set<dealii::types::global_dof_index>
+    ContactDynamics<dim>::active_dofs() const
     {
-      const auto read = [&]() {
-        double x;
-        in.read(reinterpret_cast<char *>(&x), sizeof(double));
-        return x;
-      };
-      const auto read_count = [&]() {
-        std::uint64_t n;
-        in.read(reinterpret_cast<char *>(&n), sizeof(n));
-        return n;
-      };
-      beta                  = read();
-      beta_old              = read();
-      applied               = read();
-      dt_old                = read();
-      totals                = StepReport();
-      totals.elastic        = read();
-      totals.kinetic        = read();
-      totals.bore_work      = read();
-      totals.contact_work   = read();
-      totals.dissipated     = read();
-      totals.state.reaction = read();
-      totals.state.beta     = read();
-      const auto &el        = contact.elasticity();
-      const auto &owned     = el.locally_owned_dofs();
-      AssertThrow(in && read_count() == owned.n_elements(),
-                  dealii::ExcMessage(
-                    "checkpoint: the mesh or the partition differs from the "
-                    "run that wrote it (restart with the same prm and the "
-                    "same number of MPI ranks)."));
-      for (Vector *x : {&u, &v, &a})
-        {
-          Vector o(owned, comm);
-          for (const auto i : owned)
-            o[i] = read();
-          o.compress(dealii::VectorOperation::insert);
-          x->reinit(owned, el.locally_relevant_dofs(), comm);
-          *x = o;
-        }
-      record.clear();
-      const auto n_record = read_count();
-      for (std::uint64_t k = 0; k < n_record; ++k)
-        {
-          const auto              dof    = read_count();
-          const double            lambda = read();
-          contact::SlaveNode<dim> sn;
-          sn.gap0 = read();
-          for (unsigned int c = 0; c < dim; ++c)
-            {
-              sn.normal[c] = read();
-              sn.dofs[c]   = read_count();
-            }
-          const auto n_masters = read_count();
-          for (std::uint64_t a = 0; a < n_masters; ++a)
-            {
-              sn.master_dofs.push_back(read_count());
-              sn.master_coefficients.push_back(read());
-            }
-          record[dof] = {lambda, sn};
-        }
       std::set<dealii::types::global_dof_index> active;
-      const auto                                n_active = read_count();
-      for (std::uint64_t k = 0; k < n_active; ++k)
-        active.insert(read_count());
-      AssertThrow(in, dealii::ExcMessage("checkpoint: the file is truncated."));
-      auto &starts = contact.warm_starts();
-      starts.clear();
-      // (A checkpoint of an older version ends here: no starts.)
-      const auto n_starts = in.peek() == std::char_traits<char>::eof() ?
-                              std::uint64_t(0) :
-                              read_count();
-      for (std::uint64_t k = 0; k < n_starts; ++k)
-        {
-          contact::WarmStart w;
-          w.stiffness = read();
-          w.mass      = read();
-          for (Vector *x : {&w.u0, &w.u1})
-            {
-              Vector o(owned, comm);
-              for (const auto i : owned)
-                o[i] = read();
-              o.compress(dealii::VectorOperation::insert);
-              x->reinit(owned, el.locally_relevant_dofs(), comm);
-              *x = o;
-            }
-          starts.push_back(std::move(w));
-        }
-      AssertThrow(in, dealii::ExcMessage("checkpoint: the file is truncated."));
-      contact.initialise_active_set([&](const contact::SlaveNode<dim> &s) {
-        return active.count(s.dofs[0]) > 0;
+      for (const unsigned int i : contact.active_set())
+        active.insert(contact.slave_nodes()[i].dofs[0]);
+      return active;
+    }
+
+
+
+    template <int dim>
+    void
+    ContactDynamics<dim>::checkpoint_record(CheckpointArchive &ar)
+    {
+      std::vector<std::pair<dealii::types::global_dof_index,
+                            std::pair<double, contact::SlaveNode<dim>>>>
+        entries(record.begin(), record.end());
+      ar.sequence(entries, [&](auto &entry) {
+        ar.count(entry.first);
+        ar.value(entry.second.first);
+        contact::SlaveNode<dim> &sn = entry.second.second;
+        ar.value(sn.gap0);
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            ar.value(sn.normal[c]);
+            ar.count(sn.dofs[c]);
+          }
+        std::size_t n = sn.master_dofs.size();
+        ar.count(n);
+        sn.master_dofs.resize(n);
+        sn.master_coefficients.resize(n);
+        for (std::size_t k = 0; k < n; ++k)
+          {
+            ar.count(sn.master_dofs[k]);
+            ar.value(sn.master_coefficients[k]);
+          }
       });
+      if (ar.loading())
+        record = {entries.begin(), entries.end()};
     }
 
 

@@ -87,20 +87,10 @@ namespace cycloid
 
 
     void
-    EnergyAccount::save(std::ostream &out) const
+    EnergyAccount::checkpoint(CheckpointArchive &ar)
     {
-      out.write(reinterpret_cast<const char *>(&initial_energy),
-                sizeof(double));
-      out.write(reinterpret_cast<const char *>(&energy_scale), sizeof(double));
-    }
-
-
-
-    void
-    EnergyAccount::load(std::istream &in)
-    {
-      in.read(reinterpret_cast<char *>(&initial_energy), sizeof(double));
-      in.read(reinterpret_cast<char *>(&energy_scale), sizeof(double));
+      ar.value(initial_energy);
+      ar.value(energy_scale);
     }
   } // namespace dynamics
 } // namespace cycloid

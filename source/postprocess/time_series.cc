@@ -71,29 +71,10 @@ namespace cycloid
 
 
     void
-    TimeSeries::save(std::ostream &out) const
+    TimeSeries::checkpoint(dynamics::CheckpointArchive &ar)
     {
-      for (const auto *v : const_cast<TimeSeries *>(this)->all())
-        {
-          const std::uint64_t n = v->size();
-          out.write(reinterpret_cast<const char *>(&n), sizeof(n));
-          out.write(reinterpret_cast<const char *>(v->data()),
-                    n * sizeof(double));
-        }
-    }
-
-
-
-    void
-    TimeSeries::load(std::istream &in)
-    {
-      for (auto *v : all())
-        {
-          std::uint64_t n = 0;
-          in.read(reinterpret_cast<char *>(&n), sizeof(n));
-          v->resize(n);
-          in.read(reinterpret_cast<char *>(v->data()), n * sizeof(double));
-        }
+      for (std::vector<double> *v : all())
+        ar.array(*v);
     }
 
 

@@ -134,14 +134,8 @@ namespace cycloid
       auto         in   = checkpoint.open(step, t);
       scene.place_discs(time.crank_angle(t));
       dynamics->initialise();
-      dynamics->load(*in);
-      energy.load(*in);
-      series.load(*in);
-      std::uint64_t n = 0;
-      in->read(reinterpret_cast<char *>(&n), sizeof(n));
-      sizes.resize(n);
-      in->read(reinterpret_cast<char *>(sizes.data()),
-               n * sizeof(std::uintmax_t));
+      dynamics::CheckpointArchive ar(*in);
+      checkpoint_fields(ar, sizes);
       checkpoint.check(*in);
       // The solution files written before the checkpoint.
       std::vector<std::pair<double, std::string>> previous;
@@ -164,16 +158,24 @@ namespace cycloid
     {
       dealii::TimerOutput::Scope scope(scene.timer(), "checkpoint");
       // CSV sizes at this step: a restart truncates the files to them.
-      const std::vector<std::uintmax_t> sizes = report.file_sizes();
+      std::vector<std::uintmax_t> sizes = report.file_sizes();
       checkpoint.write(step, time.time(step), [&](std::ostream &out) {
-        dynamics->save(out);
-        energy.save(out);
-        series.save(out);
-        const std::uint64_t n = sizes.size();
-        out.write(reinterpret_cast<const char *>(&n), sizeof(n));
-        out.write(reinterpret_cast<const char *>(sizes.data()),
-                  n * sizeof(std::uintmax_t));
+        dynamics::CheckpointArchive ar(out);
+        checkpoint_fields(ar, sizes);
       });
+    }
+
+
+
+    template <int dim>
+    void
+    TransientRun<dim>::checkpoint_fields(dynamics::CheckpointArchive &ar,
+                                         std::vector<std::uintmax_t> &sizes)
+    {
+      dynamics->checkpoint(ar);
+      energy.checkpoint(ar);
+      series.checkpoint(ar);
+      ar.array(sizes);
     }
 
 

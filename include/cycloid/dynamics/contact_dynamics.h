@@ -4,11 +4,14 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <cycloid/contact/contact_problem.h>
+#include <cycloid/dynamics/checkpoint.h>
 #include <cycloid/dynamics/time_scheme.h>
 #include <cycloid/dynamics/transient_parameters.h>
 
 #include <iosfwd>
+#include <map>
 #include <memory>
+#include <set>
 #include <string>
 
 namespace cycloid
@@ -119,15 +122,23 @@ namespace cycloid
         return v;
       }
 
-      /** Write the state (owned entries of this rank) to @p out. */
+      /**
+       * Write the state (owned entries of this rank) to a checkpoint, or
+       * restore it from one written on the same mesh and ranks: the one
+       * list of its fields (CheckpointArchive).
+       */
       void
-      save(std::ostream &out) const;
-
-      /** Read a state written by save() on the same mesh and rank. */
-      void
-      load(std::istream &in);
+      checkpoint(CheckpointArchive &ar);
 
     private:
+      /** The contact record's entries, through @p ar (checkpoint()). */
+      void
+      checkpoint_record(CheckpointArchive &ar);
+
+      /** The first DoF of each active slave node. */
+      std::set<dealii::types::global_dof_index>
+      active_dofs() const;
+
       /** The contact constraints of the current state with their normal
        * forces, by the slave's first DoF: for the work of moving obstacles. */
       std::map<dealii::types::global_dof_index,

@@ -48,13 +48,9 @@ namespace cycloid
             const std::string          &label,
             dealii::ConditionalOStream &out);
 
-      /** Write the account to a checkpoint. */
+      /** Write the account to a checkpoint or restore it from one. */
       void
-      save(std::ostream &out) const;
-
-      /** Read an account written by save(). */
-      void
-      load(std::istream &in);
+      checkpoint(CheckpointArchive &ar);
 
     private:
       const double      max_error;

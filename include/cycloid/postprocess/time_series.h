@@ -1,6 +1,7 @@
 #ifndef cycloid_postprocess_time_series_h
 #define cycloid_postprocess_time_series_h
 
+#include <cycloid/dynamics/checkpoint.h>
 #include <cycloid/postprocess/report.h>
 #include <cycloid/results/stage_state.h>
 
@@ -47,16 +48,12 @@ namespace cycloid
       void
       write_hdf5(const std::string &directory, const MPI_Comm comm) const;
 
-      /** Write the series to a checkpoint. */
+      /** Write the series to a checkpoint or restore them from one. */
       void
-      save(std::ostream &out) const;
-
-      /** Read a series written by save(). */
-      void
-      load(std::istream &in);
+      checkpoint(dynamics::CheckpointArchive &ar);
 
     private:
-      /** Every series, in the order of save() and load(). */
+      /** Every series, in the order of checkpoint(). */
       std::vector<std::vector<double> *>
       all();
 

@@ -80,6 +80,13 @@ namespace cycloid
       write_checkpoint(const unsigned int         step,
                        const postprocess::Report &report);
 
+      /** The one list of what a checkpoint holds (the dynamics, the energy
+       * account, the time series and the CSV sizes @p sizes), written or
+       * restored through @p ar. */
+      void
+      checkpoint_fields(dynamics::CheckpointArchive &ar,
+                        std::vector<std::uintmax_t> &sizes);
+
       /** Angular momentum of the discs about their centres, g . M v with g
        * the discs' unit rotation field [N mm s per mm thickness in 2D]. */
       double
