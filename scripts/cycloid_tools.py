@@ -1,6 +1,12 @@
 """What the Python of tests/, benchmarks/ and scripts/ shares: reading CSV
-and prm files, running the executable under mpirun, power fits and
-Richardson extrapolation.
+files and a run's parameters, running the executable under mpirun, power
+fits and Richardson extrapolation.
+
+Parameter values are read by deal.II, not here: parameter_values() takes
+a run's `parameters.json` or asks the executable (`--print-parameters=json
+FILE`). walk_prm() and read_prm() only look at the lines of a prm text,
+for a script that edits one (benchmarks/transient/run.py) or checks what a
+written file holds (tests/check_parameters_file.py).
 
 Plain Python 3; numpy is imported only by fit_power(), so that a script
 without numpy can import this module. Tests and benchmarks put this folder
@@ -9,6 +15,7 @@ on sys.path relative to their own file:
     sys.path.insert(0, str(Path(__file__).resolve().parents[N] / "scripts"))
 """
 import csv
+import json
 import math
 import os
 import signal
@@ -83,7 +90,8 @@ def _prm_lines(source):
 
 
 def read_prm(source):
-    """The `set` entries of a ParameterHandler text as {"Sub/Sub/Name":
+    """The `set` lines of a ParameterHandler text (not the values a run
+    uses: parameter_values()) as {"Sub/Sub/Name":
     value} (a top-level entry: {"Name": value}); of an entry set twice,
     the last value. @p source is a file's path (a missing file raises
     FileNotFoundError) or the lines of a text (e.g. the output of
@@ -92,23 +100,57 @@ def read_prm(source):
             for _, sections, name, value in walk_prm(_prm_lines(source)) if name is not None}
 
 
-def prm_getter(source, defaults=None):
-    """get(section, name[, default]) over the `set` entries of a
-    ParameterHandler text (@p source as for read_prm()), keyed by the
-    innermost subsection's name ("" at the top level): get("Mesh",
-    "Contact refinements") is the value as text. @p defaults
-    {(section, name): value} stand for the entries the text leaves out;
-    an entry found in neither raises KeyError unless get() is given a
-    default."""
-    values = dict(defaults or {})
-    for _, sections, name, value in walk_prm(_prm_lines(source)):
-        if name is not None:
-            values[(sections[-1] if sections else "", name)] = value
+def parameter_values(source, exe=None):
+    """The value of every declared entry as deal.II read it, as
+    {"Sub/Sub/Name": value} (a top-level entry: {"Name": value}), values
+    as text. @p source is a run's `parameters.json` (every run writes it
+    beside `parameters.prm`), the output directory holding it, or, with
+    @p exe, a parameter file: then `exe --print-parameters=json FILE`
+    reads it (deal.II's parser: includes, continuation lines, defaults
+    for what the file leaves out; a bad file raises RunError)."""
+    if exe is not None:
+        text = run_cycloid(None, exe, "--print-parameters=json", str(source), check=True).stdout
+        tree = json.loads(text)
+    else:
+        path = os.path.join(source, "parameters.json") if os.path.isdir(source) else source
+        with open(path) as f:
+            tree = json.load(f)
+    values = {}
+
+    def walk(node, prefix):
+        for name, child in node.items():
+            if isinstance(child, dict) and isinstance(child.get("value"), str):
+                values[prefix + name] = child["value"]
+            elif isinstance(child, dict):
+                walk(child, prefix + name + "/")
+
+    walk(tree, "")
+    return values
+
+
+def parameter_getter(values, auto=None):
+    """get(section, name[, default]) over parameter_values() @p values,
+    keyed by the innermost subsection's name ("" at the top level):
+    get("Mesh", "Contact refinements") is the value as text. An entry read
+    as `auto` (a size the program derives) gives what the caller resolves
+    it to: @p auto {(section, name): value}, else get()'s default, else
+    "auto". An entry that is not declared raises KeyError unless get() is
+    given a default."""
+    by_section = {}
+    for key, value in values.items():
+        parts = key.split("/")
+        by_section[(parts[-2] if len(parts) > 1 else "", parts[-1])] = value
+    resolved = dict(auto or {})
 
     def get(section, name, *default):
-        if default:
-            return values.get((section, name), default[0])
-        return values[(section, name)]
+        value = by_section.get((section, name))
+        if value is None:
+            if default:
+                return default[0]
+            raise KeyError((section, name))
+        if value == "auto":
+            return resolved.get((section, name), default[0] if default else value)
+        return value
 
     return get
 

@@ -43,7 +43,7 @@ matplotlib.use("Agg")  # no display: files only
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from cycloid_tools import read_csv, read_prm  # noqa: E402
+from cycloid_tools import parameter_values, read_csv  # noqa: E402
 
 ARCSEC_PER_RAD = 180.0 * 3600.0 / math.pi
 ARCMIN_PER_RAD = 180.0 * 60.0 / math.pi
@@ -119,8 +119,11 @@ class Run:
 
     def __init__(self, directory):
         self.dir = directory
-        prm = os.path.join(directory, "parameters.prm")
-        self.prm = read_prm(prm) if os.path.isfile(prm) else {}
+        # As deal.II read them (parameters.json, which every run writes);
+        # an output directory without it gives the plots without the title
+        # line's parameters.
+        prm = os.path.join(directory, "parameters.json")
+        self.prm = parameter_values(prm) if os.path.isfile(prm) else {}
         self.stiffness = read_columns(os.path.join(directory, "stiffness.csv"))
         self.pins = read_columns(os.path.join(directory, "pin_forces.csv"))
         self.fluctuation = read_columns(os.path.join(directory, "fluctuation.csv"))

@@ -7,6 +7,7 @@
 
 #include <cycloid/app/all_parameters.h>
 #include <cycloid/app/error_report.h>
+#include <cycloid/app/parameter_suggestions.h>
 #include <cycloid/app/run.h>
 #include <cycloid/process/heap.h>
 
@@ -24,10 +25,12 @@ namespace
            "syntax)\n"
            "  --print-parameters  write every parameter with its default and "
            "documentation\n"
+           "                      (with file.prm: with the values the file "
+           "gives, without running)\n"
            "  --print-parameters=json\n"
-           "                      the same as JSON, with each entry's pattern "
-           "(for scripts;\n"
-           "                      deal.II writes a name's blanks as _20)\n"
+           "                      the same as JSON, with each entry's value "
+           "and pattern (for\n"
+           "                      scripts: a prm file read by deal.II)\n"
            "  --help              this text\n"
            "Run modes (set Run = ...):\n"
         << cycloid::parameters::RunParameters::mode_help()
@@ -67,20 +70,21 @@ namespace
         if (arg == "--help" || arg == "-h")
           return {CommandLine::Action::help, "", ""};
         if (arg == "--print-parameters")
-          return {CommandLine::Action::print_parameters, "", ""};
-        if (arg == "--print-parameters=json")
-          return {CommandLine::Action::print_parameters_json, "", ""};
-        if (!arg.empty() && arg[0] == '-')
+          command.action = CommandLine::Action::print_parameters;
+        else if (arg == "--print-parameters=json")
+          command.action = CommandLine::Action::print_parameters_json;
+        else if (!arg.empty() && arg[0] == '-')
           return {CommandLine::Action::bad,
                   "",
                   "unknown option '" + arg + "'."};
-        if (!command.filename.empty())
+        else if (!command.filename.empty())
           return {CommandLine::Action::bad,
                   "",
                   "give one parameter file only."};
-        command.filename = arg;
+        else
+          command.filename = arg;
       }
-    if (command.filename.empty())
+    if (command.filename.empty() && command.action == CommandLine::Action::run)
       return {CommandLine::Action::bad, "", "no parameter file given."};
     return command;
   }
@@ -103,6 +107,8 @@ namespace
           case CommandLine::Action::print_parameters_json: {
             dealii::ParameterHandler prm;
             cycloid::app::AllParameters::declare_parameters(prm);
+            if (!command.filename.empty())
+              cycloid::app::parse_input_explained(prm, command.filename);
             const bool json =
               command.action == CommandLine::Action::print_parameters_json;
             if (root)

@@ -36,35 +36,16 @@ from catalogue_figures import ARCMIN, ARCSEC, catalogue
 from checker import check, rows as read_csv, verdict
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
-from cycloid_tools import prm_getter  # noqa: E402
+from cycloid_tools import parameter_getter, parameter_values  # noqa: E402
 
-DEFAULTS = {
-    ("Geometry", "Number of pins"): "40",
+# The seed's sizes for the entries the program derives (`auto`), as this
+# independent check assumes them.
+AUTO = {
     ("Geometry", "Number of cycloid teeth"): "39",
-    ("Geometry", "Pin radius"): "3",
-    ("Geometry", "Eccentricity"): "2.2",
-    ("Geometry", "Shortening coefficient"): "0.675",
-    ("Geometry", "Tooth width"): "16",
-    ("Geometry", "Pin circle radius modification"): "0",
-    ("Geometry", "Pin radius modification"): "0",
-    ("Geometry", "Rotation modification"): "0",
     ("Geometry", "Bore radius"): "25",
-    ("Geometry", "Number of crank holes"): "3",
     ("Geometry", "Crank hole radius"): "15",
     ("Geometry", "Crank hole circle radius"): "65",
-    ("Material", "Disc Young's modulus"): "212000",
-    ("Material", "Disc Poisson's ratio"): "0.3",
-    ("Material", "Pin Young's modulus"): "212000",
-    ("Material", "Pin Poisson's ratio"): "0.3",
-    ("Loading", "Number of phases"): "1",
-    ("Loading", "Torque cycle"): "false",
-    ("Loading", "Rated torque"): "1000",
-    ("Loading", "Torque cycle steps"): "40",
     ("Scene", "Number of discs"): "2",
-    ("Scene", "Pins"): "elastic",
-    ("Scene", "Load introduction"): "crank holes",
-    ("Analytic", "Pair stiffness model"): "line-contact",
-    ("Analytic", "Load sharing coefficient"): "0.7",
 }
 
 
@@ -152,7 +133,7 @@ def check_fluctuation(outdir, stiffness):
 
 
 def main(prm_path, outdir):
-    get = prm_getter(prm_path, DEFAULTS)
+    get = parameter_getter(parameter_values(outdir), AUTO)
     zp = int(get("Geometry", "Number of pins"))
     zc = int(get("Geometry", "Number of cycloid teeth"))
     rrp = float(get("Geometry", "Pin radius"))

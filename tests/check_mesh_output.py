@@ -22,7 +22,7 @@ import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
-from cycloid_tools import prm_getter  # noqa: E402
+from cycloid_tools import parameter_getter, parameter_values  # noqa: E402
 
 failures = []
 
@@ -61,7 +61,7 @@ def exact_disc_area():
 
 
 def main(prm, dir1, dir2, exe=None):
-    get = prm_getter(prm)
+    get = parameter_getter(parameter_values(dir1))
     dim = int(get("Scene", "Dimension", "2"))
     discs = get("Scene", "Number of discs", "auto")
     n_discs = (1 if dim == 2 else 2) if discs == "auto" else int(discs)

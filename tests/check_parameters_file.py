@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
-from cycloid_tools import read_csv, read_prm, run_cycloid  # noqa: E402
+from cycloid_tools import parameter_values, read_csv, read_prm, run_cycloid  # noqa: E402
 
 exe, prm, work, np = sys.argv[1], os.path.abspath(sys.argv[2]), sys.argv[3], int(sys.argv[4])
 # Columns that measure the machine, not the result.
@@ -20,7 +20,7 @@ def run(directory, prm_file):
     """Run on NP ranks in directory; return the output directory."""
     os.makedirs(directory, exist_ok=True)
     run_cycloid(np if np > 1 else None, exe, prm_file, cwd=directory, check=True)
-    return os.path.join(directory, read_prm(prm_file)["Output directory"])
+    return os.path.join(directory, parameter_values(prm_file, exe)["Output directory"])
 
 
 def rows(path):

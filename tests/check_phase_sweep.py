@@ -23,7 +23,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checker import check, rows, verdict  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
-from cycloid_tools import prm_getter, run_cycloid  # noqa: E402
+from cycloid_tools import parameter_getter, parameter_values, run_cycloid  # noqa: E402
 
 
 def close(a, b, tol):
@@ -31,7 +31,7 @@ def close(a, b, tol):
 
 
 def main(prm, dir1, dir2, exe):
-    get = prm_getter(prm)
+    get = parameter_getter(parameter_values(prm, exe))
     zp = int(get("Geometry", "Number of pins", 40))
     torques = [float(t) for t in get("Loading", "Torque").split(",")]
     n_phases = int(get("Loading", "Number of phases"))

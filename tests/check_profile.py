@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
-from cycloid_tools import prm_getter, run_cycloid  # noqa: E402
+from cycloid_tools import parameter_getter, parameter_values, run_cycloid  # noqa: E402
 
 VERTEX_TOL = 1e-9  # mm: vertices are exact profile points
 HOLE_TOL = 1e-8  # mm: holes as written (STEP keeps 13 digits)
@@ -290,7 +290,7 @@ def main():
     parser.add_argument("exe")
     parser.add_argument("--coarse", type=float)
     args = parser.parse_args()
-    get = prm_getter(args.prm)
+    get = parameter_getter(parameter_values(args.prm, args.exe))
     prof = Profile(get)
     tol = float(get("Profile", "Chord tolerance", "1e-4"))
     v, dev = check_output(args.np1, prof, tol)

@@ -30,7 +30,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checker import check, rows, verdict  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
-from cycloid_tools import prm_getter, run_cycloid  # noqa: E402
+from cycloid_tools import parameter_getter, parameter_values, run_cycloid  # noqa: E402
 
 
 def main(prm, exe, work):
@@ -40,7 +40,7 @@ def main(prm, exe, work):
     if r.returncode != 0:
         print(r.stderr)
         raise SystemExit("the run failed")
-    get = prm_getter(prm)
+    get = parameter_getter(parameter_values(prm, exe))
     out = os.path.join(work, get("", "Output directory"))
     base = int(get("Mesh", "Contact refinements"))
     cap = int(get("Mesh", "Maximum sweep refinements", 2))

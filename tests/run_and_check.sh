@@ -10,5 +10,7 @@ flags=()
 [ "$(id -u)" -eq 0 ] && flags+=(--allow-run-as-root)
 [ "$(nproc)" -lt "$np" ] && flags+=(--oversubscribe)
 mpirun "${flags[@]}" -np "$np" "$exe" "$prm"
-outdir=$(sed -n 's/^ *set Output directory *= *//p' "$prm")
+# The output directory as deal.II reads the prm (not a second parser).
+outdir=$("$exe" --print-parameters=json "$prm" | /usr/bin/python3 -c \
+  'import json, sys; print(json.load(sys.stdin)["Output directory"]["value"])')
 /usr/bin/python3 "$checker" "$prm" "$work/$outdir" "$@"

@@ -11,7 +11,9 @@ flags=()
 [ "$(id -u)" -eq 0 ] && flags+=(--allow-run-as-root)
 [ "$(nproc)" -lt 2 ] && flags+=(--oversubscribe)
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
-outdir=$(sed -n 's/^ *set Output directory *= *//p' "$prm")
+# The output directory as deal.II reads the prm (not a second parser).
+outdir=$("$exe" --print-parameters=json "$prm" | /usr/bin/python3 -c \
+  'import json, sys; print(json.load(sys.stdin)["Output directory"]["value"])')
 if [ "${CYCLOID_RANKS:-1,2}" = "2" ]; then
   mpirun "${flags[@]}" -np 2 "$exe" "$prm"
   mv "$outdir" np2

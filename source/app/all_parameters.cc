@@ -206,6 +206,11 @@ namespace cycloid
                            dealii::ParameterHandler::ShortPRM |
                              dealii::ParameterHandler::KeepDeclarationOrder);
       result.parameter_file = text.str();
+      std::ostringstream json;
+      prm.print_parameters(json,
+                           dealii::ParameterHandler::JSON |
+                             dealii::ParameterHandler::KeepDeclarationOrder);
+      result.parameter_json = json.str();
       return result;
     }
 

@@ -57,13 +57,19 @@ namespace cycloid
         return s;
       }
 
-      /** Make the output directory and write `parameters.prm` into it. */
+      /** Make the output directory and write `parameters.prm` and
+       * `parameters.json` into it. */
       void
       prepare_output_directory(const AllParameters &prm, const MPI_Comm comm)
       {
         make_output_directory(prm.run.output_directory, comm);
         write_parameter_file(prm.run.output_directory,
+                             "parameters.prm",
                              prm.parameter_file,
+                             comm);
+        write_parameter_file(prm.run.output_directory,
+                             "parameters.json",
+                             prm.parameter_json,
                              comm);
       }
 
@@ -154,6 +160,7 @@ namespace cycloid
 
     void
     write_parameter_file(const std::string &directory,
+                         const std::string &name,
                          const std::string &text,
                          const MPI_Comm     comm)
     {
@@ -164,7 +171,7 @@ namespace cycloid
       bool written = true;
       if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
         {
-          std::ofstream out(directory + "/parameters.prm");
+          std::ofstream out(directory + "/" + name);
           out << text;
           out.close();
           written = static_cast<bool>(out);
@@ -172,7 +179,7 @@ namespace cycloid
       const bool failed = dealii::Utilities::MPI::max(written ? 0 : 1, comm);
       AssertThrow(!failed,
                   dealii::ExcMessage("cannot write to Output directory '" +
-                                     directory + "' (parameters.prm)."));
+                                     directory + "' (" + name + ")."));
     }
 
 

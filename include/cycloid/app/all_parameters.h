@@ -60,6 +60,15 @@ namespace cycloid
       std::string parameter_file;
 
       /**
+       * The same values as deal.II's JSON (every entry with its value,
+       * default, documentation and pattern): written beside
+       * `parameters.prm` as `parameters.json`, so that scripts read a
+       * run's parameters as deal.II read them instead of parsing the prm
+       * grammar themselves. Empty if the set was not made by read().
+       */
+      std::string parameter_json;
+
+      /**
        * The entries the parameter file sets, as "Subsection/Entry" (or
        * "Entry" at the top level) with their values as written: read()
        * fills it, so that a run can name

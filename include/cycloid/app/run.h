@@ -32,11 +32,13 @@ namespace cycloid
     void
     make_output_directory(const std::string &directory, const MPI_Comm comm);
 
-    /** Write @p text (the run's parameters, AllParameters::parameter_file)
-     * as `parameters.prm` into @p directory on rank 0; collective (every
-     * rank throws if it cannot be written). Nothing if @p text is empty. */
+    /** Write @p text (the run's parameters, AllParameters::parameter_file
+     * or parameter_json) as @p name (`parameters.prm`, `parameters.json`)
+     * into @p directory on rank 0; collective (every rank throws if it
+     * cannot be written). Nothing if @p text is empty. */
     void
     write_parameter_file(const std::string &directory,
+                         const std::string &name,
                          const std::string &text,
                          const MPI_Comm     comm);
   } // namespace app
