@@ -5,6 +5,7 @@
 #include <cycloid/analytic/analytic_parameters.h>
 #include <cycloid/analytic/load_distribution.h>
 #include <cycloid/analytic/pair_stiffness.h>
+#include <cycloid/geometry/safeguarded_newton.h>
 
 #include <algorithm>
 #include <cmath>
@@ -337,31 +338,31 @@ namespace cycloid
     {
       if (target <= 0)
         return 0.;
-      // delta(F) is increasing and concave: Newton from the left converges
-      // monotonically; the first step may overshoot to the left of zero,
-      // which the safeguard catches.
-      double f = target / compliance(1000., pair);
-      for (unsigned int it = 0; it < 200; ++it)
-        {
-          const double slope = compliance(f, pair);
-          AssertThrow(slope > 0,
-                      dealii::ExcMessage(
-                        "line-contact pair stiffness: load beyond the model's "
-                        "range (contact half-width comparable to the pin "
-                        "radius)."));
-          double next = f - (approach(f, pair) - target) / slope;
-          if (next <= 0)
-            next = 0.1 * f;
-          const bool done = std::abs(next - f) <= 1e-14 * next;
-          f               = next;
-          if (done)
-            return f;
-        }
-      AssertThrow(false,
+      // delta(F) is increasing (while the half-width is below 4R/e) and
+      // concave, and delta(0) = 0 < target: bracket the root in (0, upper]
+      // by doubling, then Newton inside the bracket.
+      const auto in_range = [&](const double f) {
+        AssertThrow(compliance(f, pair) > 0,
+                    dealii::ExcMessage(
+                      "line-contact pair stiffness: load beyond the model's "
+                      "range (contact half-width comparable to the pin "
+                      "radius)."));
+      };
+      const double start = target / compliance(1000., pair);
+      double       upper = start;
+      for (in_range(upper); approach(upper, pair) < target; in_range(upper))
+        upper *= 2;
+      const auto residual = [&](const double f, double &value, double &slope) {
+        value = approach(f, pair) - target;
+        slope = compliance(f, pair);
+      };
+      const geometry::NewtonResult root = geometry::safeguarded_newton(
+        residual, std::min(start, upper), 0., upper, true, 1e-15, 200);
+      AssertThrow(root.converged,
                   dealii::ExcMessage("line-contact pair stiffness: the "
                                      "force-approach inversion did not "
                                      "converge."));
-      return f;
+      return root.x;
     }
 
 

@@ -4,6 +4,7 @@
 #include <deal.II/base/numbers.h>
 
 #include <cycloid/geometry/disc_profile.h>
+#include <cycloid/geometry/safeguarded_newton.h>
 
 #include <algorithm>
 #include <cmath>
@@ -198,10 +199,9 @@ namespace cycloid
 
       // Safeguarded Newton on g(phi) = (P - q) . P' inside the bracket of
       // the best sample's neighbours.
-      double     a        = lo + (best_k == 0 ? 0 : best_k - 1) * h;
-      double     b        = lo + std::min(best_k + 1, n_samples) * h;
-      double     phi      = lo + best_k * h;
-      const auto g_and_dg = [&](const double x, double &g, double &dg) {
+      const double a        = lo + (best_k == 0 ? 0 : best_k - 1) * h;
+      const double b        = lo + std::min(best_k + 1, n_samples) * h;
+      const auto   g_and_dg = [&](const double x, double &g, double &dg) {
         Tensor<1, 2> p, dp, ddp, n;
         evaluate(x, p, dp, ddp, n);
         const Tensor<1, 2> d = p - q;
@@ -211,27 +211,14 @@ namespace cycloid
       double ga, gb, dg;
       g_and_dg(a, ga, dg);
       g_and_dg(b, gb, dg);
-      const bool bracketed = (ga <= 0 && gb >= 0);
-      for (unsigned int it = 0; it < 60; ++it)
-        {
-          double g;
-          g_and_dg(phi, g, dg);
-          if (bracketed)
-            {
-              if (g < 0)
-                a = phi;
-              else
-                b = phi;
-            }
-          double next = (dg > 0) ? phi - g / dg : 0.5 * (a + b);
-          if (bracketed && (next <= a || next >= b))
-            next = 0.5 * (a + b);
-          const double step = std::abs(next - phi);
-          phi               = next;
-          if (step < 1e-15 * (1. + std::abs(phi)))
-            break;
-        }
-      return profile(phi);
+      return profile(safeguarded_newton(g_and_dg,
+                                        lo + best_k * h,
+                                        a,
+                                        b,
+                                        ga <= 0 && gb >= 0,
+                                        1e-15,
+                                        60)
+                       .x);
     }
 
 
