@@ -69,8 +69,12 @@ namespace cycloid
         notes.push_back(discs);
       resolve_error_estimate();
       AssertThrow(scene.pin_core_radius < geometry.pin_radius,
-                  dealii::ExcMessage("Scene/Pin core radius must be smaller "
-                                     "than Geometry/Pin radius."));
+                  dealii::ExcMessage(
+                    "Scene/Pin core radius (" +
+                    dealii::Utilities::to_string(scene.pin_core_radius) +
+                    " mm) must be smaller than Geometry/Pin radius (" +
+                    dealii::Utilities::to_string(geometry.pin_radius) +
+                    " mm)."));
     }
 
 

@@ -147,13 +147,20 @@ namespace cycloid
     void
     make_output_directory(const std::string &directory, const MPI_Comm comm)
     {
-      std::error_code ec;
+      // Rank 0 makes it; every rank learns the system's reason, so that
+      // the error names it on every rank (see app/error_report.h).
+      std::string reason;
       if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
-        std::filesystem::create_directories(directory, ec);
-      const bool failed = dealii::Utilities::MPI::max(ec ? 1 : 0, comm);
-      AssertThrow(!failed,
+        {
+          std::error_code ec;
+          std::filesystem::create_directories(directory, ec);
+          if (ec)
+            reason = ec.message();
+        }
+      reason = dealii::Utilities::MPI::broadcast(comm, reason, 0);
+      AssertThrow(reason.empty(),
                   dealii::ExcMessage("Output directory '" + directory +
-                                     "' cannot be created."));
+                                     "' cannot be created: " + reason + "."));
     }
 
 

@@ -159,6 +159,7 @@ namespace cycloid
           read("Housing wall thickness", housing_thickness);
       }
       prm.leave_subsection();
+      check_plausible_lengths();
       apply_auto_sizes();
     }
 

@@ -353,6 +353,66 @@ namespace cycloid
 
 
 
+    namespace
+    {
+      /** Throw naming Geometry/@p name unless @p value [mm] lies in
+       * [@p lo, @p hi]; suggest the unit it was probably typed in. */
+      void
+      require_plausible(const std::string &name,
+                        const double       value,
+                        const double       lo,
+                        const double       hi)
+      {
+        if (value >= lo && value <= hi)
+          return;
+        std::ostringstream msg;
+        msg << "Geometry/" << name << " = " << value
+            << " mm is far outside any cycloid reducer (" << lo << " to "
+            << hi << " mm). Lengths are in mm";
+        if (value * 1000. >= lo && value * 1000. <= hi)
+          msg << ": did you mean " << value * 1000. << " mm (" << value
+              << " m)?";
+        else if (value / 1000. >= lo && value / 1000. <= hi)
+          msg << ": did you mean " << value / 1000. << " mm (" << value
+              << " um)?";
+        else
+          msg << ".";
+        AssertThrow(false, dealii::ExcMessage(msg.str()));
+      }
+    } // namespace
+
+
+
+    void
+    GeometryParameters::check_plausible_lengths() const
+    {
+      // Generous bands around the reducers there are (RV reducers have
+      // pins of 1.5 to 15 mm radius on pin circles of 30 to 400 mm): they
+      // only catch a unit slip of a factor 1000.
+      require_plausible("Pin radius", pin_radius, 0.1, 100.);
+      require_plausible("Eccentricity", eccentricity, 0.05, 100.);
+      require_plausible("Tooth width", tooth_width, 0.5, 1000.);
+      if (shortening_coefficient > 0 && shortening_coefficient < 1)
+        {
+          const double rp = eccentricity * n_pins / shortening_coefficient;
+          AssertThrow(rp >= 2. && rp <= 5000.,
+                      dealii::ExcMessage(
+                        "the pin circle radius rp = e zp / K1 = " +
+                        std::to_string(rp) +
+                        " mm (from Geometry/Eccentricity, Number of pins "
+                        "and Shortening coefficient) is far outside any "
+                        "cycloid reducer (2 to 5000 mm). Lengths are in "
+                        "mm."));
+        }
+      for (const auto &[name, value] :
+           {std::pair<const char *, double>{"Pin circle radius modification",
+                                            delta_pin_circle_radius},
+            {"Pin radius modification", delta_pin_radius}})
+        require_plausible(name, value, -1., 1.);
+    }
+
+
+
     void
     CycloidGeometry::validate() const
     {

@@ -72,6 +72,15 @@ namespace cycloid
       declare_material(prm, "Disc", defaults.disc);
       declare_material(prm, "Pin", defaults.pin);
       declare_material(prm, "Housing", defaults.housing);
+      prm.declare_entry(
+        "Allowable contact pressure",
+        dealii::Utilities::to_string(defaults.allowable_contact_pressure),
+        dealii::Patterns::Double(0.),
+        "Peak contact pressure of a pin above which a run warns, naming "
+        "the pin and the state [MPa], >= 0; 0: never. Default 1500 MPa: "
+        "the contact fatigue limit sigma_Hlim of case-hardened steels such "
+        "as the 20CrMnTi of discs and pins (ISO 6336-5, about 1300 to "
+        "1650 MPa by quality grade).");
       prm.leave_subsection();
     }
 
@@ -84,6 +93,7 @@ namespace cycloid
       disc    = parse_material(prm, "Disc");
       pin     = parse_material(prm, "Pin");
       housing = parse_material(prm, "Housing");
+      allowable_contact_pressure = prm.get_double("Allowable contact pressure");
       prm.leave_subsection();
     }
 

@@ -67,7 +67,24 @@ namespace cycloid
          [](auto &o, const R &r) { o << r.max_pin_hertz_nodes; }},
         {"resolution_error",
          [](auto &o, const R &r) { o << results::resolution_error(r.state); }},
-        {"bulk_error", [](auto &o, const R &r) { o << r.state.error.bulk; }}};
+        {"bulk_error", [](auto &o, const R &r) { o << r.state.error.bulk; }},
+        // The state's highest peak contact pressure over all pins, and
+        // where: it need not be on the most loaded pin.
+        {"max_contact_pressure_MPa",
+         [](auto &o, const R &r) {
+           const auto p = r.state.highest_pressure_pin();
+           o << (p == r.state.pins.end() ? 0. : p->max_pressure);
+         }},
+        {"max_pressure_disc",
+         [](auto &o, const R &r) {
+           const auto p = r.state.highest_pressure_pin();
+           o << (p == r.state.pins.end() ? -1 : int(p->disc));
+         }},
+        {"max_pressure_pin",
+         [](auto &o, const R &r) {
+           const auto p = r.state.highest_pressure_pin();
+           o << (p == r.state.pins.end() ? -1 : int(p->pin));
+         }}};
       return columns;
     }
 

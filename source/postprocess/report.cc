@@ -200,8 +200,16 @@ namespace cycloid
       if (options.torque_cycle)
         cycle.push_back({s.crank, s.torque, s.rotation, s.takeup});
       for (const results::PinState &p : s.pins)
-        if (p.fn > peak.pin.fn)
-          peak = {s.step, s.crank, s.torque, p};
+        {
+          if (p.fn > peak.pin.fn)
+            peak = {s.step, s.crank, s.torque, p};
+          if (p.max_pressure > peak_pressure.pin.max_pressure)
+            peak_pressure = {s.step, s.crank, s.torque, p};
+        }
+      const auto highest = s.highest_pressure_pin();
+      if (options.allowable_pressure > 0 && highest != s.pins.end() &&
+          highest->max_pressure > options.allowable_pressure)
+        ++n_overloaded;
     }
 
 
@@ -227,11 +235,13 @@ namespace cycloid
                 << s.k_tangent << " N m/rad ("
                 << s.k_tangent * u::rad_per_arcmin << " N m/arcmin), pins "
                 << s.pins_in_contact() << ", iterations " << s.iterations;
-      const auto most = s.most_loaded_pin();
+      const auto most    = s.most_loaded_pin();
+      const auto highest = s.highest_pressure_pin();
       if (most != s.pins.end() && most->fn > 0)
         std::cout << ", max Fn " << most->fn << " N (disc " << most->disc
-                  << " pin " << most->pin << ", p " << most->max_pressure
-                  << " MPa)";
+                  << " pin " << most->pin << "), peak contact pressure "
+                  << highest->max_pressure << " MPa (disc " << highest->disc
+                  << " pin " << highest->pin << ")";
       if (s.dofs > 0)
         std::cout << ", dofs " << s.dofs;
       std::cout << ", " << s.wall_s << " s" << std::endl;
@@ -543,13 +553,7 @@ namespace cycloid
           write_torque_cycle();
           written += ", torsion_curve.csv, rigidity.csv";
         }
-      if (peak.pin.fn > 0)
-        std::cout << "  most loaded pin: disc " << peak.pin.disc << ", pin "
-                  << peak.pin.pin << ", Fn " << peak.pin.fn
-                  << " N, peak contact pressure " << peak.pin.max_pressure
-                  << " MPa (state " << peak.step + 1 << ", crank "
-                  << peak.crank * u::deg_per_rad << " deg, torque "
-                  << peak.torque << " N m)" << std::endl;
+      print_peaks();
       if (n_flagged > 0)
         std::cout << "  WARNING: " << n_flagged << " of " << n_written
                   << " state(s) exceed Mesh/Warning threshold ("
@@ -559,6 +563,39 @@ namespace cycloid
                   << options.refine_advice << std::endl;
       std::cout << "  results in " << options.directory << "/: " << written
                 << std::endl;
+    }
+
+
+
+    void
+    Report::print_peaks() const
+    {
+      if (!(peak.pin.fn > 0))
+        return;
+      const auto where = [](const PeakPin &p) {
+        std::ostringstream s;
+        s << "disc " << p.pin.disc << ", pin " << p.pin.pin << " (state "
+          << p.step + 1 << ", crank " << p.crank * u::deg_per_rad
+          << " deg, torque " << p.torque << " N m)";
+        return s.str();
+      };
+      std::cout << "  most loaded pin: " << where(peak) << ", Fn "
+                << peak.pin.fn << " N, its peak contact pressure "
+                << peak.pin.max_pressure << " MPa" << std::endl;
+      std::cout << "  highest contact pressure: "
+                << peak_pressure.pin.max_pressure << " MPa, "
+                << where(peak_pressure) << ", Fn " << peak_pressure.pin.fn
+                << " N" << std::endl;
+      if (n_overloaded > 0)
+        std::cout << "  warning: the peak contact pressure "
+                  << peak_pressure.pin.max_pressure << " MPa on "
+                  << where(peak_pressure)
+                  << " exceeds Material/Allowable contact pressure ("
+                  << options.allowable_pressure << " MPa), in "
+                  << n_overloaded << " of " << n_written
+                  << " state(s): the contact would pit or yield; check the "
+                     "Torque, or raise the entry for a stronger material"
+                  << std::endl;
     }
   } // namespace postprocess
 } // namespace cycloid

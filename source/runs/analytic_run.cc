@@ -27,9 +27,10 @@ namespace cycloid
     show_state(const unsigned int k,
                const unsigned int n_k,
                const unsigned int t,
-               const unsigned int n_t)
+               const unsigned int n_t,
+               const bool         always)
     {
-      if (n_k * n_t <= 20)
+      if (always || n_k * n_t <= 20)
         return true;
       if (n_t > 20)
         return (k == 0 || k + 1 == n_k) &&
@@ -52,6 +53,8 @@ namespace cycloid
     {
       postprocess::Report::Options options;
       options.directory    = settings.output_directory;
+      options.allowable_pressure =
+        settings.model.material.allowable_contact_pressure;
       options.discretised  = false;
       options.torque_cycle = settings.loading.torque_cycle;
       options.rated_torque = settings.loading.rated_torque;
@@ -121,8 +124,11 @@ namespace cycloid
               // Only rank 0 computes (the others wait at the end).
               state.peak_memory_MB = results::peak_memory_MB(MPI_COMM_SELF);
               report.write(state, torques[t]);
-              if (show_state(
-                    step / torques.size(), angles.size(), t, torques.size()))
+              if (show_state(step / torques.size(),
+                             angles.size(),
+                             t,
+                             torques.size(),
+                             settings.loading.is_rated_state(torques[t])))
                 report.print(state,
                              "  state " + std::to_string(step + 1) + "/" +
                                std::to_string(n_states) + ": ");

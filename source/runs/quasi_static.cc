@@ -52,6 +52,8 @@ namespace cycloid
     {
       postprocess::Report::Options options;
       options.directory        = settings.stage.output_directory;
+      options.allowable_pressure =
+        settings.stage.material.allowable_contact_pressure;
       options.rotation_control = settings.loading.rotation_control;
       options.torque_cycle     = settings.loading.torque_cycle;
       options.rated_torque     = settings.loading.rated_torque;

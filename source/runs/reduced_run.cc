@@ -59,6 +59,8 @@ namespace cycloid
     {
       postprocess::Report::Options options;
       options.directory = settings.model.stage.output_directory;
+      options.allowable_pressure =
+        settings.model.stage.material.allowable_contact_pressure;
       // No contact mesh, so no mesh-to-mesh noise between crank angles:
       // the coarse model carries the far field only and its contact points
       // move smoothly over one mesh; the first and last phase of a period
@@ -196,7 +198,12 @@ namespace cycloid
               setup_s                   = 0;
               state.peak_memory_MB      = results::peak_memory_MB(comm);
               report.write(state, torques[t]);
-              if (root && show_state(k, angles.size(), t, torques.size()))
+              if (root && show_state(k,
+                                     angles.size(),
+                                     t,
+                                     torques.size(),
+                                     settings.loading.is_rated_state(
+                                       torques[t])))
                 report.print(state,
                              "  state " + std::to_string(step + 1) + "/" +
                                std::to_string(n_states) + ": ");

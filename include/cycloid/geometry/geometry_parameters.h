@@ -103,6 +103,18 @@ namespace cycloid
       void
       apply_auto_sizes();
 
+      /**
+       * Throw if a length lies far outside any cycloid reducer (a pin
+       * radius below 0.1 mm or above 100 mm, a pin circle radius below
+       * 2 mm or above 5 m, ...), naming the entry and, where the value
+       * would be plausible in metres or micrometres, the millimetres it
+       * probably means: a value typed in the wrong unit is caught before
+       * a check further on names an entry the user never set. Called by
+       * parse_parameters(); ranges in source/geometry/validation.cc.
+       */
+      void
+      check_plausible_lengths() const;
+
       /** Whether the parameter file is known to leave entry @p name of
        * subsection `Geometry` at its default. */
       bool

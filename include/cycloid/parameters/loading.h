@@ -4,6 +4,7 @@
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <cmath>
 #include <vector>
 
 namespace cycloid
@@ -48,6 +49,15 @@ namespace cycloid
        */
       std::vector<double>
       cycle_torques() const;
+
+      /** Whether @p torque is a state of the torque cycle that the
+       * catalogue figures are read at, +-rated torque, which the console
+       * always shows (a long cycle shows about every other state). */
+      bool
+      is_rated_state(const double torque) const
+      {
+        return torque_cycle && std::abs(torque) == rated_torque;
+      }
 
       /** The side (+1 or -1) from which the zero torque @p loads[i] of a
        * torque cycle is approached: that of the branch it ends (the

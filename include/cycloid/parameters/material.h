@@ -41,6 +41,9 @@ namespace cycloid
       ElasticMaterial pin{212000., 0.3, 7850.};
       /** Pin housing. */
       ElasticMaterial housing{173000., 0.3, 7100.};
+      /** Peak contact pressure above which a run warns [MPa] (0: never):
+       * the contact fatigue limit of case-hardened steel. */
+      double allowable_contact_pressure = 1500.;
 
       /** Declare subsection `Material`. */
       static void

@@ -81,6 +81,9 @@ namespace cycloid
         /** Fraction of the rated torque at which the lost motion is read
          * (catalogues: 3 %). */
         double lost_motion_fraction = 0.03;
+        /** Warn about pins whose peak contact pressure exceeds this
+         * (Material/Allowable contact pressure; 0: never) [MPa]. */
+        double allowable_pressure = 0;
         /** Flag FE states whose largest error estimate exceeds this
          * (Mesh/Warning threshold; 0: never) [-]. */
         double warning_threshold = 0;
@@ -207,6 +210,11 @@ namespace cycloid
       void
       write_torque_cycle() const;
 
+      /** Print the run's most loaded pin, its pin of highest contact
+       * pressure, and the warning if that is above the allowable. */
+      void
+      print_peaks() const;
+
       const Options             options;
       const bool                active;
       std::ofstream             stiffness;
@@ -215,6 +223,10 @@ namespace cycloid
       std::vector<Series>       series;
       std::vector<TorsionPoint> cycle;
       PeakPin                   peak;
+      /** The pin with the highest contact pressure of the run. */
+      PeakPin peak_pressure;
+      /** States with a pin above Options::allowable_pressure. */
+      unsigned int n_overloaded = 0;
       /** States flagged by the warning threshold, and states written. */
       unsigned int n_flagged = 0, n_written = 0;
     };

@@ -231,6 +231,20 @@ namespace cycloid
         return f;
       }
 
+      /** The pin with the highest peak contact pressure (the first of
+       * equals; it need not be the most loaded pin: a pin nearer the tooth
+       * tip meets a flank of smaller curvature radius); pins.end() if the
+       * state has no pins. */
+      std::vector<PinState>::const_iterator
+      highest_pressure_pin() const
+      {
+        return std::max_element(pins.begin(),
+                                pins.end(),
+                                [](const PinState &a, const PinState &b) {
+                                  return a.max_pressure < b.max_pressure;
+                                });
+      }
+
       /** The most loaded pin (the first of equals); pins.end() if the
        * state has no pins. */
       std::vector<PinState>::const_iterator

@@ -22,13 +22,15 @@ namespace cycloid
      * and torque @p t of @p n_t (runs of many cheap states): all of a short
      * run; of a long one, every torque at about ten crank angles including
      * the first and last; a torque cycle of more than 20 states: about
-     * twenty of them, at the first and the last crank angle.
+     * twenty of them, at the first and the last crank angle; and any state
+     * with @p always (the rated-torque states of a cycle).
      */
     bool
     show_state(const unsigned int k,
                const unsigned int n_k,
                const unsigned int t,
-               const unsigned int n_t);
+               const unsigned int n_t,
+               const bool         always = false);
 
     /**
      * @brief `Run = analytic`: the analytical model over every crank angle
