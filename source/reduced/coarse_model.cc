@@ -45,6 +45,7 @@ namespace cycloid
         s.mesh.refine_loaded_side_only = load_sign != 0;
         s.mesh.adaptive_cycles         = 0;
         s.quiet                        = true;
+        s.check_cost                   = false;
         return s;
       }
 

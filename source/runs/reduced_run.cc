@@ -7,6 +7,8 @@
 #include <cycloid/results/cost_figures.h>
 #include <cycloid/runs/analytic_run.h>
 #include <cycloid/runs/reduced_run.h>
+#include <cycloid/reduced/reduced_model.h>
+#include <cycloid/stage/cost_estimate.h>
 #include <cycloid/stage/stage_scene.h>
 
 #include <chrono>
@@ -77,6 +79,47 @@ namespace cycloid
 
 
     template <int dim>
+    void
+    ReducedRun<dim>::announce_cost(const reduced::CoarseModel<dim> &coarse,
+                                   const std::vector<double>       &angles) const
+    {
+      const auto &s      = settings.model;
+      const auto  slices = dim == 3 ? s.reduced.axial_slices : 1u;
+      const analytic::StageModel model(s.stage.model_settings());
+      const auto contacts = [&](const int sign) {
+        return static_cast<unsigned int>(
+          reduced::carrying_pins(model, angles.front(), sign).size() * slices);
+      };
+      const unsigned int n_anchors = s.reduced.anchor_angles;
+      stage::ReducedCostInputs in;
+      in.dimension       = dim;
+      in.n_dofs          = coarse.dofs();
+      in.n_contacts      = contacts(load_sign());
+      in.n_condensations = n_anchors >= 2 && n_anchors < angles.size() ?
+                             n_anchors :
+                             angles.size();
+      in.n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+      const auto estimate = stage::estimate_reduced_cost(in);
+      if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          std::cout << "  " << estimate.line() << std::endl;
+          if (load_sign() == 0)
+            std::cout << "  both flanks condensed (" << in.n_contacts
+                      << " contacts instead of " << contacts(1)
+                      << "): the torques have both signs (a torque cycle, "
+                         "or negative torques in the list), so every pin "
+                         "may touch either flank"
+                      << std::endl;
+        }
+      stage::check_reduced_memory(estimate,
+                                  stage::available_memory_bytes(comm),
+                                  s.stage.mesh,
+                                  slices);
+    }
+
+
+
+    template <int dim>
     std::unique_ptr<reduced::CompliancePath<dim>>
     ReducedRun<dim>::compliance_path(reduced::CoarseModel<dim> &coarse,
                                      const std::vector<double> &angles,
@@ -138,7 +181,6 @@ namespace cycloid
     ReducedRun<dim>::run()
     {
       const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-      postprocess::Report       report(report_options(), comm);
       const std::vector<double> angles =
         settings.loading.crank_angles(model.geometry().mesh_period());
       const std::vector<double> torques  = settings.loading.torque_values();
@@ -163,6 +205,10 @@ namespace cycloid
       if (root)
         std::cout << "  coarse model: " << coarse.dofs() << " DoFs, built in "
                   << mesh_s << " s" << std::endl;
+      announce_cost(coarse, angles);
+      // The files once the condensation is known to fit: a run stopped by
+      // the memory check leaves none.
+      postprocess::Report report(report_options(), comm);
       // A long condensation (3D) shows its progress.
       std::ostream *progress = root && dim == 3 ? &std::cout : nullptr;
       const auto    path     = compliance_path(coarse, angles, progress);

@@ -246,5 +246,107 @@ namespace cycloid
                     "matrices are allocated. Reduce " +
                     advice.str() + "."));
     }
+
+
+
+    namespace
+    {
+      /**
+       * The reduced model's condensation, fitted to 2-rank runs of the
+       * seed stage on 2026-12-07 (benchmarks/reduced/cost_model.sh,
+       * doc/reduced/cost-model.csv; load average about 1): memory
+       * = 150 MB a rank + n (kb_per_dof + kb_per_dof_contact m), time of
+       * one condensation = c n^p + d m n, with n the coarse DoFs and m the
+       * contacts. 3D (MUMPS L D L^T on both ranks): 141 k to 417 k DoFs,
+       * 42 to 168 contacts, one and two discs; memory rms 1.2 %, time rms
+       * 5 % (-10 to +3 %). 2D (CHOLMOD on rank 0; 61 k to 163 k DoFs, 21
+       * and 40 contacts): memory rms 1.6 %, time within -13 to +115 %
+       * (the 2D condensations take 0.2 to 1.1 s, where the machine's
+       * noise is as large; p = 1.5 fixed). The contact term is the load
+       * vectors and solution columns of the block solve (17 bytes a DoF
+       * and contact in 3D, about two doubles; 42 in 2D, gathered on one
+       * rank).
+       */
+      struct ReducedFamily
+      {
+        double kb_per_dof;         ///< [kB] per coarse DoF.
+        double kb_per_dof_contact; ///< [kB] per coarse DoF and contact.
+        double c;                  ///< Factorisation time c n^p [s].
+        double p;                  ///< Its exponent.
+        double d;                  ///< Solve time per DoF and contact [s].
+      };
+      constexpr ReducedFamily reduced_3d{3.524, 0.01656, 5.739e-11, 1.94, 8.306e-8};
+      constexpr ReducedFamily reduced_2d{1.904, 0.04205, 9.749e-9, 1.5, 9.827e-8};
+      /** A state after the condensation: the complementarity solve and
+       * its report (doc/reduced-model.md §4) [s]. */
+      constexpr double reduced_state_seconds = 2e-3;
+    } // namespace
+
+
+
+    std::string
+    ReducedCostEstimate::line() const
+    {
+      const ReducedCostInputs &in = inputs;
+      return std::to_string(in.n_contacts) + " contacts on " +
+             std::to_string(in.n_dofs) + " DoFs: estimated peak memory " +
+             significant(memory_bytes / 1e9, 2) +
+             " GB (summed over ranks), condensation about " +
+             significant(seconds_per_condensation, 2) + " s" +
+             (in.n_condensations > 1 ?
+                " at each of " + std::to_string(in.n_condensations) +
+                  " crank angles" :
+                std::string()) +
+             ", then about " + significant(reduced_state_seconds * 1e3, 1) +
+             " ms per state";
+    }
+
+
+
+    ReducedCostEstimate
+    estimate_reduced_cost(const ReducedCostInputs &in)
+    {
+      const ReducedFamily &f = in.dimension == 3 ? reduced_3d : reduced_2d;
+      const double         n = static_cast<double>(in.n_dofs);
+      const double         m = in.n_contacts;
+      ReducedCostEstimate  e;
+      e.inputs       = in;
+      e.memory_bytes = 1e6 * mb_per_rank * std::max(1u, in.n_ranks) +
+                       1e3 * n * (f.kb_per_dof + f.kb_per_dof_contact * m);
+      e.seconds_per_condensation = f.c * std::pow(n, f.p) + f.d * m * n;
+      return e;
+    }
+
+
+
+    void
+    check_reduced_memory(const ReducedCostEstimate  &estimate,
+                         const double                available,
+                         const mesh::MeshParameters &mesh,
+                         const unsigned int          slices)
+    {
+      if (estimate.memory_bytes <= available)
+        return;
+      std::ostringstream advice;
+      advice << "larger Mesh/Flank element size (now " << mesh.flank_size
+             << " mm), Pin element size (now " << mesh.pin_size
+             << " mm) or Coarse element size (now " << mesh.coarse_size
+             << " mm)";
+      if (estimate.inputs.dimension == 3)
+        advice << ", or fewer Reduced/Axial slices per disc (now " << slices
+               << ")";
+      AssertThrow(false,
+                  dealii::ExcMessage(
+                    "the reduced model's condensation needs an estimated " +
+                    significant(estimate.memory_bytes / 1e9, 3) +
+                    " GB of memory (summed over the ranks; " +
+                    std::to_string(estimate.inputs.n_contacts) +
+                    " contacts on " + std::to_string(estimate.inputs.n_dofs) +
+                    " DoFs, doc/reduced-model.md §4), more than the " +
+                    significant(available / 1e9, 3) +
+                    " GB available (MemAvailable); stopped before "
+                    "factorising. Reduce it with a " +
+                    advice.str() + "."));
+    }
   } // namespace stage
 } // namespace cycloid

@@ -112,7 +112,8 @@ namespace cycloid
       make_grid(request);
       setup_contact();
       setup_system();
-      announce_cost();
+      if (settings.check_cost)
+        announce_cost();
       compute_rotation_field();
     }
 

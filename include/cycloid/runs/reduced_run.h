@@ -46,6 +46,17 @@ namespace cycloid
       int
       load_sign() const;
 
+      /**
+       * Before the first condensation: print the contacts it will condense
+       * (and why both flanks, for torques of both signs) with the cost
+       * model's memory and time, and stop if the memory does not fit
+       * (stage::estimate_reduced_cost(), stage::check_reduced_memory()).
+       * Collective.
+       */
+      void
+      announce_cost(const reduced::CoarseModel<dim> &coarse,
+                    const std::vector<double>       &angles) const;
+
       /** The report's options: a reduced run's states are not
        * discretised (no contact mesh), and the torque cycle's. */
       postprocess::Report::Options

@@ -101,6 +101,58 @@ namespace cycloid
     CostEstimate
     estimate_cost(const CostInputs &inputs);
 
+    /** What the reduced model's condensation (`Run = reduced`) is costed
+     * from, once its coarse model is built. */
+    struct ReducedCostInputs
+    {
+      unsigned int                    dimension = 2; ///< Scene/Dimension.
+      dealii::types::global_dof_index n_dofs    = 0; ///< Coarse model DoFs.
+      /** Contacts condensed (load cases of one condensation). */
+      unsigned int n_contacts = 0;
+      /** Crank angles condensed (the anchors of a sweep, or each angle). */
+      unsigned int n_condensations = 1;
+      /** MPI ranks. */
+      unsigned int n_ranks = 2;
+    };
+
+    /**
+     * @brief The reduced model's cost before it condenses: peak memory and
+     * the time of each condensation (factorisation and every load case),
+     * fitted to measured 2-rank runs (source/stage/cost_estimate.cc gives
+     * the runs and the fit's error; doc/reduced-model.md §4).
+     */
+    struct ReducedCostEstimate
+    {
+      ReducedCostInputs inputs; ///< What it was costed from.
+      /** Peak resident memory summed over the ranks [bytes]. */
+      double memory_bytes = 0;
+      /** Wall time of one condensation [s]. */
+      double seconds_per_condensation = 0;
+
+      /** "84 contacts on 314028 DoFs: estimated peak memory 1.9 GB (summed
+       * over ranks), condensation about 5.4 s (1 crank angle), then about
+       * 2 ms per state". */
+      std::string
+      line() const;
+    };
+
+    /** The reduced cost model's estimate for @p inputs. */
+    ReducedCostEstimate
+    estimate_reduced_cost(const ReducedCostInputs &inputs);
+
+    /**
+     * Stop before the condensation if @p estimate needs more than
+     * @p available bytes: throws dealii::ExcMessage with the estimate and
+     * the entries that reduce it (their present values: the coarse
+     * model's element sizes from @p mesh, the axial slices @p slices in
+     * 3D). Call with the same arguments on every rank.
+     */
+    void
+    check_reduced_memory(const ReducedCostEstimate  &estimate,
+                         const double                available,
+                         const mesh::MeshParameters &mesh,
+                         const unsigned int          slices);
+
     /**
      * Memory available to the run [bytes]: /proc/meminfo MemAvailable of
      * each node the ranks of @p comm run on, summed over the nodes, plus

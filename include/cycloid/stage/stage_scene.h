@@ -61,6 +61,11 @@ namespace cycloid
       /** Print nothing (the scenes of a phase group other than world rank
        * 0's: the console has one voice). */
       bool quiet = false;
+      /** Print the FE cost line and stop if the FE solve would not fit
+       * (announce_cost()). The reduced model's coarse scene does not solve
+       * contact: its owner costs the condensation instead
+       * (stage::estimate_reduced_cost()). */
+      bool check_cost = true;
 
       /** The settings of the analytical model of the same stage. */
       analytic::ModelSettings
