@@ -15,6 +15,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -673,4 +675,59 @@ TEST(Parameters, CostModelMatchesTheMeasuredRuns)
                 std::string::npos)
         << what;
     }
+}
+
+
+
+TEST(Parameters, PinCircleRadiusCanBeGivenInsteadOfK1)
+{
+  const std::string file = "test_parameters_rp.prm";
+  const auto        read = [&](const std::string &geometry) {
+    std::ofstream(file) << "set Run = analytic\nsubsection Geometry\n"
+                        << geometry << "end\n";
+    return app::AllParameters::read(file);
+  };
+  // rp given: K1 follows, and the geometry has the rp of the drawing, also
+  // when e changes (with K1 fixed, e = 2 would move rp to 118.5 mm).
+  for (const double e : {2.2, 2.0})
+    {
+      const auto p = read("set Pin circle radius = 130\nset Eccentricity = " +
+                          std::to_string(e) + "\n");
+      EXPECT_NEAR(p.geometry.shortening_coefficient, e * 40 / 130., 1e-15);
+      EXPECT_NEAR(geometry::CycloidGeometry(p.geometry).pin_circle_radius(),
+                  130.,
+                  1e-12);
+    }
+  // Both given and consistent: accepted.
+  EXPECT_NO_THROW(read("set Pin circle radius = 130.37037037037037\n"
+                       "set Shortening coefficient = 0.675\n"));
+  // Both given and inconsistent, or rp inside e zp: an error naming both.
+  const auto message = [&](const std::string &geometry) {
+    try
+      {
+        read(geometry);
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        // deal.II wraps the message: one blank between words.
+        std::string text;
+        for (const char c : std::string(e.what()))
+          if (!std::isspace(c) || (!text.empty() && text.back() != ' '))
+            text += std::isspace(c) ? ' ' : c;
+        return text;
+      }
+    return std::string();
+  };
+  const std::string both =
+    message("set Pin circle radius = 130\nset Shortening coefficient = 0.675\n");
+  EXPECT_NE(both.find("Geometry/Pin circle radius = 130 mm and "
+                      "Geometry/Shortening coefficient = 0.675 disagree"),
+            std::string::npos)
+    << both;
+  const std::string inside = message("set Pin circle radius = 80\n");
+  EXPECT_NE(inside.find("Geometry/Pin circle radius = 80 mm must exceed e zp "
+                        "= 88 mm"),
+            std::string::npos)
+    << inside;
+  std::remove(file.c_str());
 }

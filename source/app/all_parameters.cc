@@ -4,7 +4,9 @@
 
 #include <cycloid/app/all_parameters.h>
 #include <cycloid/app/parameter_suggestions.h>
+#include <cycloid/parameters/or_auto.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -172,6 +174,30 @@ namespace cycloid
 
 
 
+    void
+    AllParameters::check_pin_circle(const AllParameters &p)
+    {
+      const auto rp = p.set_in_file.find("Geometry/Pin circle radius");
+      const auto k1 = p.set_in_file.find("Geometry/Shortening coefficient");
+      if (rp == p.set_in_file.end() || k1 == p.set_in_file.end() ||
+          parameters::is_auto(rp->second))
+        return;
+      // The file's K1 against the one its rp gives (parse_parameters()
+      // replaced the member by the latter).
+      const double given = dealii::Utilities::string_to_double(k1->second);
+      const double from_rp = p.geometry.shortening_coefficient;
+      AssertThrow(std::abs(given - from_rp) <= 1e-9 * from_rp,
+                  dealii::ExcMessage(
+                    "Geometry/Pin circle radius = " + rp->second +
+                    " mm and Geometry/Shortening coefficient = " +
+                    k1->second +
+                    " disagree: rp = e zp / K1 gives K1 = " +
+                    dealii::Utilities::to_string(from_rp) +
+                    " for this rp. Set one of the two (the other follows)."));
+    }
+
+
+
     AllParameters
     AllParameters::read(const std::string &filename)
     {
@@ -192,6 +218,7 @@ namespace cycloid
       for (const auto &entry : result.set_in_file)
         if (value_of(prm, entry.first) == value_of(defaults, entry.first))
           result.set_to_default.insert(entry.first);
+      check_pin_circle(result);
       result.geometry.set_in_file.emplace();
       for (const auto &entry : result.set_in_file)
         if (entry.first.rfind("Geometry/", 0) == 0)

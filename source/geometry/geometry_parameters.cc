@@ -50,7 +50,17 @@ namespace cycloid
           "0.675",
           Double(0, 1),
           "Shortening coefficient K1 = e zp / rp [-], 0 < K1 < 1; the pin "
-          "circle radius rp follows from it.");
+          "circle radius rp follows from it, unless Pin circle radius is "
+          "given.");
+        prm.declare_entry(
+          "Pin circle radius",
+          "auto",
+          parameters::OrAuto(Double(0)),
+          "Pin circle radius rp [mm]: the radius of the circle through the "
+          "pin centres. auto: e zp / K1 from the Shortening coefficient. A "
+          "value sets K1 = e zp / rp instead (then rp stays where the "
+          "drawing has it when e changes); given together with a "
+          "Shortening coefficient that disagrees, it is an error.");
         prm.declare_entry(
           "Tooth width",
           "16",
@@ -137,6 +147,11 @@ namespace cycloid
         delta_pin_radius = prm.get_double("Pin radius modification");
         rotation_modification_rad =
           prm.get_double("Rotation modification") * pi / 180.;
+        const std::string rp_text = prm.get("Pin circle radius");
+        given_pin_circle_radius =
+          parameters::is_auto(rp_text) ?
+            0. :
+            dealii::Utilities::string_to_double(rp_text);
         n_crank_holes = prm.get_integer("Number of crank holes");
         axial_gap     = prm.get_double("Axial gap between discs");
         // An auto entry is flagged here and sized by apply_auto_sizes().
@@ -159,6 +174,19 @@ namespace cycloid
           read("Housing wall thickness", housing_thickness);
       }
       prm.leave_subsection();
+      if (given_pin_circle_radius > 0)
+        {
+          const double ezp = eccentricity * n_pins;
+          AssertThrow(given_pin_circle_radius > ezp,
+                      dealii::ExcMessage(
+                        "Geometry/Pin circle radius = " +
+                        dealii::Utilities::to_string(given_pin_circle_radius) +
+                        " mm must exceed e zp = " +
+                        dealii::Utilities::to_string(ezp) +
+                        " mm (Eccentricity times Number of pins), so that "
+                        "K1 = e zp / rp < 1."));
+          shortening_coefficient = ezp / given_pin_circle_radius;
+        }
       check_plausible_lengths();
       apply_auto_sizes();
     }

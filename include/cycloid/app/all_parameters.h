@@ -131,6 +131,12 @@ namespace cycloid
         return {geometry, material, scene, analytic};
       }
 
+      /** Throw if the file sets both Geometry/Pin circle radius and a
+       * Shortening coefficient that disagrees with it (@p p.set_in_file
+       * known). */
+      static void
+      check_pin_circle(const AllParameters &p);
+
       /** The settings of the mesh. */
       mesh::MeshSettings
       mesh_settings() const

@@ -68,6 +68,11 @@ namespace cycloid
        * [mm]: the housing ring spans rp ... rp + this. */
       double housing_thickness = 15.0;
 
+      /** Geometry/Pin circle radius as the file gives it [mm], or 0 for
+       * auto: then the shortening coefficient sets rp = e zp / K1; else
+       * it sets K1 = e zp / rp (parse_parameters()). */
+      double given_pin_circle_radius = 0;
+
       /** The entries that were `auto`. */
       Automatic automatic;
       /**
