@@ -698,9 +698,19 @@ TEST(Parameters, PinCircleRadiusCanBeGivenInsteadOfK1)
                   130.,
                   1e-12);
     }
-  // Both given and consistent: accepted.
+  // Both given and consistent: accepted. The parameters.prm of a run with
+  // rp given holds rp and the K1 it gives, and repeats the run.
   EXPECT_NO_THROW(read("set Pin circle radius = 130.37037037037037\n"
                        "set Shortening coefficient = 0.675\n"));
+  {
+    const auto        first = read("set Pin circle radius = 130\n");
+    const std::string again = "test_parameters_rp_again.prm";
+    std::ofstream(again) << first.parameter_file;
+    const auto second = app::AllParameters::read(again);
+    EXPECT_EQ(second.geometry.shortening_coefficient,
+              first.geometry.shortening_coefficient);
+    std::remove(again.c_str());
+  }
   // Both given and inconsistent, or rp inside e zp: an error naming both.
   const auto message = [&](const std::string &geometry) {
     try

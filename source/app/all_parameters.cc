@@ -175,17 +175,21 @@ namespace cycloid
 
 
     void
-    AllParameters::check_pin_circle(const AllParameters &p)
+    AllParameters::check_pin_circle(
+      dealii::ParameterHandler                 &prm,
+      const std::map<std::string, std::string> &set_in_file)
     {
-      const auto rp = p.set_in_file.find("Geometry/Pin circle radius");
-      const auto k1 = p.set_in_file.find("Geometry/Shortening coefficient");
-      if (rp == p.set_in_file.end() || k1 == p.set_in_file.end() ||
+      const auto rp = set_in_file.find("Geometry/Pin circle radius");
+      const auto k1 = set_in_file.find("Geometry/Shortening coefficient");
+      if (rp == set_in_file.end() || k1 == set_in_file.end() ||
           parameters::is_auto(rp->second))
         return;
-      // The file's K1 against the one its rp gives (parse_parameters()
-      // replaced the member by the latter).
-      const double given = dealii::Utilities::string_to_double(k1->second);
-      const double from_rp = p.geometry.shortening_coefficient;
+      prm.enter_subsection("Geometry");
+      const double ezp =
+        prm.get_double("Eccentricity") * prm.get_integer("Number of pins");
+      prm.leave_subsection();
+      const double given   = dealii::Utilities::string_to_double(k1->second);
+      const double from_rp = ezp / dealii::Utilities::string_to_double(rp->second);
       AssertThrow(std::abs(given - from_rp) <= 1e-9 * from_rp,
                   dealii::ExcMessage(
                     "Geometry/Pin circle radius = " + rp->second +
@@ -212,13 +216,15 @@ namespace cycloid
       AllParameters result;
       record_entries_set(prm, result.set_in_file);
       parse_input_explained(prm, filename);
+      // The file's own values, before parse_parameters() derives K1 from
+      // a given rp (and writes it back for parameters.prm).
+      check_pin_circle(prm, result.set_in_file);
       result.parse_parameters(prm);
       dealii::ParameterHandler defaults;
       declare_parameters(defaults);
       for (const auto &entry : result.set_in_file)
         if (value_of(prm, entry.first) == value_of(defaults, entry.first))
           result.set_to_default.insert(entry.first);
-      check_pin_circle(result);
       result.geometry.set_in_file.emplace();
       for (const auto &entry : result.set_in_file)
         if (entry.first.rfind("Geometry/", 0) == 0)

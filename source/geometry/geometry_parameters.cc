@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace cycloid
@@ -186,6 +187,13 @@ namespace cycloid
                         " mm (Eccentricity times Number of pins), so that "
                         "K1 = e zp / rp < 1."));
           shortening_coefficient = ezp / given_pin_circle_radius;
+          // The K1 the run uses, so that parameters.prm (rp and this K1)
+          // repeats the run.
+          std::ostringstream k1;
+          k1 << std::setprecision(17) << shortening_coefficient;
+          prm.enter_subsection("Geometry");
+          prm.set("Shortening coefficient", k1.str());
+          prm.leave_subsection();
         }
       check_plausible_lengths();
       apply_auto_sizes();

@@ -132,10 +132,11 @@ namespace cycloid
       }
 
       /** Throw if the file sets both Geometry/Pin circle radius and a
-       * Shortening coefficient that disagrees with it (@p p.set_in_file
-       * known). */
+       * Shortening coefficient that disagrees with it (@p set_in_file: the
+       * entries the file sets, as read; @p prm parsed). */
       static void
-      check_pin_circle(const AllParameters &p);
+      check_pin_circle(dealii::ParameterHandler                 &prm,
+                       const std::map<std::string, std::string> &set_in_file);
 
       /** The settings of the mesh. */
       mesh::MeshSettings
