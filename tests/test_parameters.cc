@@ -15,9 +15,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cctype>
-
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -728,8 +727,8 @@ TEST(Parameters, PinCircleRadiusCanBeGivenInsteadOfK1)
       }
     return std::string();
   };
-  const std::string both =
-    message("set Pin circle radius = 130\nset Shortening coefficient = 0.675\n");
+  const std::string both = message(
+    "set Pin circle radius = 130\nset Shortening coefficient = 0.675\n");
   EXPECT_NE(both.find("Geometry/Pin circle radius = 130 mm and "
                       "Geometry/Shortening coefficient = 0.675 disagree"),
             std::string::npos)

@@ -188,13 +188,13 @@ namespace cycloid
       const double ezp =
         prm.get_double("Eccentricity") * prm.get_integer("Number of pins");
       prm.leave_subsection();
-      const double given   = dealii::Utilities::string_to_double(k1->second);
-      const double from_rp = ezp / dealii::Utilities::string_to_double(rp->second);
+      const double given = dealii::Utilities::string_to_double(k1->second);
+      const double from_rp =
+        ezp / dealii::Utilities::string_to_double(rp->second);
       AssertThrow(std::abs(given - from_rp) <= 1e-9 * from_rp,
                   dealii::ExcMessage(
                     "Geometry/Pin circle radius = " + rp->second +
-                    " mm and Geometry/Shortening coefficient = " +
-                    k1->second +
+                    " mm and Geometry/Shortening coefficient = " + k1->second +
                     " disagree: rp = e zp / K1 gives K1 = " +
                     dealii::Utilities::to_string(from_rp) +
                     " for this rp. Set one of the two (the other follows)."));

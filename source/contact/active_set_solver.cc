@@ -223,10 +223,10 @@ namespace cycloid
     template <int dim>
     void
     ActiveSetSolver<dim>::solve_iterate(const std::set<unsigned int> &active,
-                                        const bool         assembled,
-                                        const double       tolerance,
-                                        const std::string &iteration,
-                                        ContactState      &state)
+                                        const bool                    assembled,
+                                        const double                  tolerance,
+                                        const std::string            &iteration,
+                                        ContactState                 &state)
     {
       clock.restart();
       const unsigned int builds = problem.n_preconditioner_builds();
@@ -269,10 +269,10 @@ namespace cycloid
                         " evictions" :
                       std::string())
                 << "; rank 0 resident after assembly " << m_assemble
-                << " MB, preconditioner " << m_preconditioner
-                << " MB, solves " << resident_MB() << " MB, heap in use "
-                << in_use_MB() << " MB, peak " << peak_MB() << " MB; "
-                << heap_layout() << "; peak after assembly " << p_assemble
+                << " MB, preconditioner " << m_preconditioner << " MB, solves "
+                << resident_MB() << " MB, heap in use " << in_use_MB()
+                << " MB, peak " << peak_MB() << " MB; " << heap_layout()
+                << "; peak after assembly " << p_assemble
                 << " MB, after preconditioner " << p_preconditioner << " MB"
                 << std::endl;
     }

@@ -14,8 +14,7 @@ namespace cycloid
     bool
     CheckpointArchive::at_end() const
     {
-      return in != nullptr &&
-             in->peek() == std::char_traits<char>::eof();
+      return in != nullptr && in->peek() == std::char_traits<char>::eof();
     }
 
 

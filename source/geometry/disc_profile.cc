@@ -211,14 +211,10 @@ namespace cycloid
       double ga, gb, dg;
       g_and_dg(a, ga, dg);
       g_and_dg(b, gb, dg);
-      return profile(safeguarded_newton(g_and_dg,
-                                        lo + best_k * h,
-                                        a,
-                                        b,
-                                        ga <= 0 && gb >= 0,
-                                        1e-15,
-                                        60)
-                       .x);
+      return profile(
+        safeguarded_newton(
+          g_and_dg, lo + best_k * h, a, b, ga <= 0 && gb >= 0, 1e-15, 60)
+          .x);
     }
 
 

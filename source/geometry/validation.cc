@@ -367,8 +367,8 @@ namespace cycloid
           return;
         std::ostringstream msg;
         msg << "Geometry/" << name << " = " << value
-            << " mm is far outside any cycloid reducer (" << lo << " to "
-            << hi << " mm). Lengths are in mm";
+            << " mm is far outside any cycloid reducer (" << lo << " to " << hi
+            << " mm). Lengths are in mm";
         if (value * 1000. >= lo && value * 1000. <= hi)
           msg << ": did you mean " << value * 1000. << " mm (" << value
               << " m)?";

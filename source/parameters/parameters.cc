@@ -90,9 +90,9 @@ namespace cycloid
     MaterialParameters::parse_parameters(dealii::ParameterHandler &prm)
     {
       prm.enter_subsection("Material");
-      disc    = parse_material(prm, "Disc");
-      pin     = parse_material(prm, "Pin");
-      housing = parse_material(prm, "Housing");
+      disc                       = parse_material(prm, "Disc");
+      pin                        = parse_material(prm, "Pin");
+      housing                    = parse_material(prm, "Housing");
       allowable_contact_pressure = prm.get_double("Allowable contact pressure");
       prm.leave_subsection();
     }

@@ -80,8 +80,7 @@ namespace cycloid
            const auto p = r.state.highest_pressure_pin();
            o << (p == r.state.pins.end() ? -1 : int(p->disc));
          }},
-        {"max_pressure_pin",
-         [](auto &o, const R &r) {
+        {"max_pressure_pin", [](auto &o, const R &r) {
            const auto p = r.state.highest_pressure_pin();
            o << (p == r.state.pins.end() ? -1 : int(p->pin));
          }}};

@@ -591,8 +591,8 @@ namespace cycloid
                   << peak_pressure.pin.max_pressure << " MPa on "
                   << where(peak_pressure)
                   << " exceeds Material/Allowable contact pressure ("
-                  << options.allowable_pressure << " MPa), in "
-                  << n_overloaded << " of " << n_written
+                  << options.allowable_pressure << " MPa), in " << n_overloaded
+                  << " of " << n_written
                   << " state(s): the contact would pit or yield; check the "
                      "Torque, or raise the entry for a stronger material"
                   << std::endl;

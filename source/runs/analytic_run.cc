@@ -52,7 +52,7 @@ namespace cycloid
     AnalyticRun::run()
     {
       postprocess::Report::Options options;
-      options.directory    = settings.output_directory;
+      options.directory = settings.output_directory;
       options.allowable_pressure =
         settings.model.material.allowable_contact_pressure;
       options.discretised  = false;

@@ -51,7 +51,7 @@ namespace cycloid
     report_options(const FeRunSettings &settings)
     {
       postprocess::Report::Options options;
-      options.directory        = settings.stage.output_directory;
+      options.directory = settings.stage.output_directory;
       options.allowable_pressure =
         settings.stage.material.allowable_contact_pressure;
       options.rotation_control = settings.loading.rotation_control;

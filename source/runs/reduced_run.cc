@@ -4,10 +4,10 @@
 #include <deal.II/base/utilities.h>
 
 #include <cycloid/postprocess/report.h>
+#include <cycloid/reduced/reduced_model.h>
 #include <cycloid/results/cost_figures.h>
 #include <cycloid/runs/analytic_run.h>
 #include <cycloid/runs/reduced_run.h>
-#include <cycloid/reduced/reduced_model.h>
 #include <cycloid/stage/cost_estimate.h>
 #include <cycloid/stage/stage_scene.h>
 
@@ -81,24 +81,23 @@ namespace cycloid
     template <int dim>
     void
     ReducedRun<dim>::announce_cost(const reduced::CoarseModel<dim> &coarse,
-                                   const std::vector<double>       &angles) const
+                                   const std::vector<double> &angles) const
     {
       const auto &s      = settings.model;
       const auto  slices = dim == 3 ? s.reduced.axial_slices : 1u;
       const analytic::StageModel model(s.stage.model_settings());
-      const auto contacts = [&](const int sign) {
+      const auto                 contacts = [&](const int sign) {
         return static_cast<unsigned int>(
           reduced::carrying_pins(model, angles.front(), sign).size() * slices);
       };
-      const unsigned int n_anchors = s.reduced.anchor_angles;
+      const unsigned int       n_anchors = s.reduced.anchor_angles;
       stage::ReducedCostInputs in;
-      in.dimension       = dim;
-      in.n_dofs          = coarse.dofs();
-      in.n_contacts      = contacts(load_sign());
-      in.n_condensations = n_anchors >= 2 && n_anchors < angles.size() ?
-                             n_anchors :
-                             angles.size();
-      in.n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+      in.dimension  = dim;
+      in.n_dofs     = coarse.dofs();
+      in.n_contacts = contacts(load_sign());
+      in.n_condensations =
+        n_anchors >= 2 && n_anchors < angles.size() ? n_anchors : angles.size();
+      in.n_ranks          = dealii::Utilities::MPI::n_mpi_processes(comm);
       const auto estimate = stage::estimate_reduced_cost(in);
       if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
         {
@@ -244,12 +243,12 @@ namespace cycloid
               setup_s                   = 0;
               state.peak_memory_MB      = results::peak_memory_MB(comm);
               report.write(state, torques[t]);
-              if (root && show_state(k,
-                                     angles.size(),
-                                     t,
-                                     torques.size(),
-                                     settings.loading.is_rated_state(
-                                       torques[t])))
+              if (root &&
+                  show_state(k,
+                             angles.size(),
+                             t,
+                             torques.size(),
+                             settings.loading.is_rated_state(torques[t])))
                 report.print(state,
                              "  state " + std::to_string(step + 1) + "/" +
                                std::to_string(n_states) + ": ");

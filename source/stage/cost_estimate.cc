@@ -275,8 +275,16 @@ namespace cycloid
         double p;                  ///< Its exponent.
         double d;                  ///< Solve time per DoF and contact [s].
       };
-      constexpr ReducedFamily reduced_3d{3.524, 0.01656, 5.739e-11, 1.94, 8.306e-8};
-      constexpr ReducedFamily reduced_2d{1.904, 0.04205, 9.749e-9, 1.5, 9.827e-8};
+      constexpr ReducedFamily reduced_3d{3.524,
+                                         0.01656,
+                                         5.739e-11,
+                                         1.94,
+                                         8.306e-8};
+      constexpr ReducedFamily reduced_2d{1.904,
+                                         0.04205,
+                                         9.749e-9,
+                                         1.5,
+                                         9.827e-8};
       /** A state after the condensation: the complementarity solve and
        * its report (doc/reduced-model.md §4) [s]. */
       constexpr double reduced_state_seconds = 2e-3;

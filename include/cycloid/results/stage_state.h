@@ -238,11 +238,7 @@ namespace cycloid
       std::vector<PinState>::const_iterator
       highest_pressure_pin() const
       {
-        return std::max_element(pins.begin(),
-                                pins.end(),
-                                [](const PinState &a, const PinState &b) {
-                                  return a.max_pressure < b.max_pressure;
-                                });
+        return pin_with_largest(&PinState::max_pressure);
       }
 
       /** The most loaded pin (the first of equals); pins.end() if the
@@ -250,10 +246,18 @@ namespace cycloid
       std::vector<PinState>::const_iterator
       most_loaded_pin() const
       {
+        return pin_with_largest(&PinState::fn);
+      }
+
+      /** The pin with the largest @p field (the first of equals);
+       * pins.end() if the state has no pins. */
+      std::vector<PinState>::const_iterator
+      pin_with_largest(double PinState::*field) const
+      {
         return std::max_element(pins.begin(),
                                 pins.end(),
-                                [](const PinState &a, const PinState &b) {
-                                  return a.fn < b.fn;
+                                [field](const PinState &a, const PinState &b) {
+                                  return a.*field < b.*field;
                                 });
       }
     };
