@@ -4,6 +4,7 @@
 
 #include <cycloid/app/ignored_entries.h>
 #include <cycloid/app/run.h>
+#include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/runs/analytic_run.h>
 #include <cycloid/runs/mesh_run.h>
 #include <cycloid/runs/phase_sweep.h>
@@ -12,9 +13,13 @@
 #include <cycloid/runs/reduced_run.h>
 #include <cycloid/runs/transient.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
+#include <limits>
+#include <sstream>
 
 namespace cycloid
 {
@@ -191,6 +196,45 @@ namespace cycloid
 
 
 
+    std::string
+    stage_line(const geometry::GeometryParameters &g)
+    {
+      try
+        {
+          const geometry::CycloidGeometry geo(g);
+          // The rest clearance along the normals over one mesh period
+          // (the modified profile's; 0 for the conjugate one), both discs.
+          double             lo = std::numeric_limits<double>::max(), hi = -lo;
+          const unsigned int n_phases = 10;
+          for (unsigned int k = 0; k < n_phases; ++k)
+            for (unsigned int d = 0; d < 2; ++d)
+              for (const auto &c :
+                   geo.pin_contacts(d, geo.mesh_period() * k / n_phases))
+                {
+                  lo = std::min(lo, c.clearance);
+                  hi = std::max(hi, c.clearance);
+                }
+          std::ostringstream s;
+          s << std::setprecision(6) << "stage: zp = " << g.n_pins
+            << ", rp = " << geo.pin_circle_radius()
+            << " mm, K1 = " << g.shortening_coefficient
+            << ", e = " << g.eccentricity << " mm, rrp = " << g.pin_radius
+            << " mm, b = " << g.tooth_width << " mm; rest clearance "
+            << std::setprecision(3) << std::max(0., lo * 1e3) << " to "
+            << std::max(0., hi * 1e3)
+            << " um (Delta rp = " << g.delta_pin_circle_radius * 1e3
+            << " um, Delta rrp = " << g.delta_pin_radius * 1e3 << " um)";
+          return s.str();
+        }
+      catch (const dealii::ExceptionBase &)
+        {
+          // The run's own check reports the geometry error.
+          return "";
+        }
+    }
+
+
+
     void
     announce_parameters(const AllParameters &prm, const MPI_Comm comm)
     {
@@ -198,6 +242,9 @@ namespace cycloid
         return;
       for (const std::string &note : prm.notes)
         std::cout << note << std::endl;
+      const std::string stage = stage_line(prm.geometry);
+      if (!stage.empty())
+        std::cout << stage << std::endl;
       std::map<std::string, std::string> changed = prm.set_in_file;
       for (const std::string &name : prm.set_to_default)
         changed.erase(name);

@@ -21,11 +21,20 @@ namespace cycloid
     run(const AllParameters &parameters, const MPI_Comm comm);
 
     /** On rank 0 of @p comm: print what @p parameters resolved on their
-     * own (AllParameters::notes, stdout) and a warning line for every
-     * entry the file sets that the run mode ignores (stderr,
-     * ignored_entry_warnings()). */
+     * own (AllParameters::notes, stdout), the stage line (stage_line()),
+     * and a warning line for every entry the file sets that the run mode
+     * ignores (stderr, ignored_entry_warnings()). */
     void
     announce_parameters(const AllParameters &parameters, const MPI_Comm comm);
+
+    /** "stage: zp = 40, rp = 130.37 mm, K1 = 0.675, e = 2.2 mm, rrp = 3 mm,
+     * b = 16 mm; rest clearance 0 to 0 um (Delta rp = 0 um, Delta rrp =
+     * 0 um)": the inputs a designer thinks in, and the rest clearance
+     * along the contact normals over one mesh period (both discs), so the
+     * modification's effect is read before any state; "" if @p geometry
+     * is not a valid stage (the run's own check then says why). */
+    std::string
+    stage_line(const geometry::GeometryParameters &geometry);
 
     /** Create @p directory on rank 0 (collective; throws naming it if it
      * cannot be made). */
