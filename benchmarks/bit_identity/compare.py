@@ -4,8 +4,10 @@
 Runs each prm file with two executables (2 ranks, no solution files) and
 compares every number of every CSV file the runs write, skipping only the
 columns that measure the machine (wall_s, peak_memory_MB). Prints, per
-prm, the largest relative difference and where it is; headers, row counts
-and text columns must match exactly.
+prm, the largest relative difference and where it is, over the columns
+both builds write, and the columns only the new build writes (a new
+output column is not a changed result); row counts, the old build's
+columns and text columns must match exactly.
 
 A refactoring that must leave results unchanged is checked with it against
 the build before it, e.g. (from tests/runs/):
@@ -50,12 +52,17 @@ def relative(u, v):
 
 def compare(old, new):
     """Largest relative difference over the CSV files of two directories,
-    and where it is."""
-    worst, where = 0.0, ""
+    and where it is, over the columns both have; and the columns only the
+    new build writes (a new output column is not a changed result). A
+    column the old build wrote and the new one does not, or a different
+    row count, is a difference (inf)."""
+    worst, where, added = 0.0, "", []
     for f in sorted(old.glob("*.csv")):
         a, b = read_csv(f), read_csv(new / f.name, missing_ok=True)
-        if len(a) != len(b) or (a and a[0].keys() != b[0].keys()):
-            return math.inf, f"{f.name}: header or rows differ"
+        if len(a) != len(b) or (a and not set(a[0]) <= set(b[0])):
+            return math.inf, f"{f.name}: columns or rows differ", added
+        if a:
+            added += [f"{f.name}:{c}" for c in b[0] if c not in a[0]]
         for x, y in zip(a, b):
             for col in x:
                 if col in MACHINE_COLUMNS:
@@ -63,7 +70,7 @@ def compare(old, new):
                 d = relative(x[col], y[col])
                 if d > worst:
                     worst, where = d, f"{f.name}:{col}"
-    return worst, where
+    return worst, where, added
 
 
 def main():
@@ -78,10 +85,11 @@ def main():
             print(f"{name}: exit {a.returncode} / {b.returncode}")
             failed = True
             continue
-        worst, where = compare(work / f"{name}-old", work / f"{name}-new")
+        worst, where, added = compare(work / f"{name}-old", work / f"{name}-new")
         failed |= worst > 0
         print(f"{name:34s} largest relative difference {worst:.3g} "
-              f"({where or 'none'}); {a.wall_s:.1f} s / {b.wall_s:.1f} s",
+              f"({where or 'none'}); {a.wall_s:.1f} s / {b.wall_s:.1f} s"
+              + (f"; new columns: {', '.join(added)}" if added else ""),
               flush=True)
     return 1 if failed else 0
 
