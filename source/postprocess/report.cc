@@ -287,14 +287,19 @@ namespace cycloid
     Report::print_estimate(const results::StageState &s) const
     {
       if (!s.error.failure.empty())
-        std::cout << "    WARNING: no error estimate: the next coarser contact "
-                  << "level failed (" << s.error.failure
-                  << "); the mesh is near the coarsest the contact solver "
+        std::cout << "    WARNING: no error estimate: the next coarser "
+                  << (s.error.method.empty() ? "contact level" : "model")
+                  << " failed (" << s.error.failure
+                  << "); the mesh is near the coarsest the solver "
                   << "resolves. " << options.refine_advice << std::endl;
       if (!s.error.available())
         return print_resolution(s);
-      std::cout << "    estimated error (contact levels "
-                << s.error.contact_level - 2 << " to " << s.error.contact_level
+      std::cout << "    estimated error ("
+                << (s.error.method.empty() ?
+                      "contact levels " +
+                        std::to_string(s.error.contact_level - 2) + " to " +
+                        std::to_string(s.error.contact_level) :
+                      s.error.method)
                 << "): K_secant " << pct(s.error.k_secant) << ", K_tangent "
                 << pct(s.error.k_tangent) << ", pin forces "
                 << pct(s.error.max_pin_force) << " of the largest";

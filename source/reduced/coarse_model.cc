@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <sstream>
 
 namespace cycloid
 {
@@ -23,6 +24,55 @@ namespace cycloid
                         std::pow(2.,
                                  reduced.refinements(stage.scene.dimension)),
                       stage.geometry.pin_radius / 3.);
+    }
+
+
+
+    ReducedSettings
+    ReducedSettings::coarser() const
+    {
+      ReducedSettings    c   = *this;
+      const unsigned int dim = stage.scene.dimension;
+      const unsigned int r   = reduced.refinements(dim);
+      // The whole mesh one level coarser: the far field as well as the
+      // contacts, since the coarse model shares the FE model's far-field
+      // error (up to 1.3 % in 2D at the default sizes, measured by the FE
+      // model's bulk estimate).
+      if (r > 0)
+        c.reduced.contact_refinements = r - 1;
+      else
+        c.stage.mesh.contact_size *= 2;
+      for (double *h : {&c.stage.mesh.flank_size,
+                        &c.stage.mesh.pin_size,
+                        &c.stage.mesh.coarse_size})
+        *h *= 2;
+      if (reduced.load_half_width > 0)
+        c.reduced.load_half_width *= 2;
+      c.reduced.axial_slices   = std::max(1u, reduced.axial_slices / 2);
+      c.reduced.error_estimate = false;
+      return c;
+    }
+
+
+
+    std::string
+    ReducedSettings::coarser_description() const
+    {
+      const unsigned int dim = stage.scene.dimension;
+      const unsigned int r   = reduced.refinements(dim);
+      std::ostringstream d;
+      if (r > 0)
+        d << "Contact refinements " << r << " -> " << r - 1 << ", ";
+      else
+        d << "contact elements " << stage.mesh.contact_size << " -> "
+          << 2 * stage.mesh.contact_size << " mm, ";
+      d << "flank, pin and far-field elements doubled";
+      d << ", w " << load_half_width() << " -> " << coarser().load_half_width()
+        << " mm";
+      if (dim == 3)
+        d << ", axial slices " << reduced.axial_slices << " -> "
+          << coarser().reduced.axial_slices;
+      return d.str();
     }
 
 

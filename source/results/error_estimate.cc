@@ -58,6 +58,37 @@ namespace cycloid
 
 
 
+    void
+    set_error_estimate(const StageState  &coarse,
+                       StageState        &fine,
+                       const std::string &method)
+    {
+      AssertThrow(coarse.pins.size() == fine.pins.size(),
+                  dealii::ExcDimensionMismatch(coarse.pins.size(),
+                                               fine.pins.size()));
+      const auto change = [](const double q0, const double q1, const double r) {
+        return std::isfinite(q0) && std::isfinite(q1) && r != 0 ?
+                 std::abs(q0 - q1) / std::abs(r) :
+                 std::numeric_limits<double>::quiet_NaN();
+      };
+      auto &e     = fine.error;
+      e.k_secant  = change(fine.k_secant(), coarse.k_secant(), fine.k_secant());
+      e.k_tangent = change(fine.k_tangent, coarse.k_tangent, fine.k_tangent);
+      e.method    = method;
+      double largest = 0;
+      for (unsigned int k = 0; k < fine.pins.size(); ++k)
+        {
+          auto &p    = fine.pins[k];
+          p.fn_error = change(p.fn, coarse.pins[k].fn, 1.);
+          largest    = std::max(largest, p.fn_error);
+        }
+      const double f_max = fine.max_pin_force();
+      e.max_pin_force =
+        f_max > 0 ? largest / f_max : std::numeric_limits<double>::quiet_NaN();
+    }
+
+
+
     BulkError
     bulk_error(const StageState &bulk, const StageState &state)
     {

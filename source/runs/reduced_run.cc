@@ -6,12 +6,14 @@
 #include <cycloid/postprocess/report.h>
 #include <cycloid/reduced/reduced_model.h>
 #include <cycloid/results/cost_figures.h>
+#include <cycloid/results/error_estimate.h>
 #include <cycloid/runs/analytic_run.h>
 #include <cycloid/runs/reduced_run.h>
 #include <cycloid/stage/cost_estimate.h>
 #include <cycloid/stage/stage_scene.h>
 
 #include <chrono>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -73,6 +75,13 @@ namespace cycloid
       options.rated_torque = settings.loading.rated_torque;
       options.lost_motion_fraction =
         parameters::LoadingParameters::lost_motion_torque;
+      const auto &s             = settings.model;
+      options.warning_threshold = s.stage.mesh.error.warning_threshold;
+      options.refine_advice =
+        "Cure: a finer coarse model (Reduced/Contact refinements, now " +
+        std::to_string(s.reduced.refinements(dim)) +
+        ", or a smaller Mesh/Contact element size, now " +
+        dealii::Utilities::to_string(s.stage.mesh.contact_size) + " mm)";
       return options;
     }
 
@@ -120,25 +129,27 @@ namespace cycloid
 
     template <int dim>
     std::unique_ptr<reduced::CompliancePath<dim>>
-    ReducedRun<dim>::compliance_path(reduced::CoarseModel<dim> &coarse,
-                                     const std::vector<double> &angles,
-                                     std::ostream              *progress) const
+    ReducedRun<dim>::compliance_path(const reduced::ReducedSettings &s,
+                                     reduced::CoarseModel<dim>      &coarse,
+                                     const std::vector<double>      &angles,
+                                     std::ostream                   *progress,
+                                     const bool verbose) const
     {
       // A sweep of more crank angles than anchors condenses at the anchors
       // only and interpolates the compliance in between.
-      const unsigned int n_anchors = settings.model.reduced.anchor_angles;
+      const unsigned int n_anchors = s.reduced.anchor_angles;
       if (n_anchors < 2 || n_anchors >= angles.size())
         return nullptr;
       std::vector<double> anchors;
       for (unsigned int a = 0; a < n_anchors; ++a)
         anchors.push_back(angles.front() + (angles.back() - angles.front()) *
                                              a / (n_anchors - 1));
-      if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+      if (verbose && dealii::Utilities::MPI::this_mpi_process(comm) == 0)
         std::cout << "  condensing at " << n_anchors
                   << " anchor angles, interpolated over " << angles.size()
                   << " crank angles" << std::endl;
       return std::make_unique<reduced::CompliancePath<dim>>(
-        settings.model, coarse, anchors, angles, load_sign(), progress);
+        s, coarse, anchors, angles, load_sign(), progress);
     }
 
 
@@ -177,6 +188,111 @@ namespace cycloid
 
     template <int dim>
     void
+    ReducedRun<dim>::solve_states(
+      const reduced::ReducedSettings                                 &s,
+      reduced::CoarseModel<dim>                                      &coarse,
+      const std::vector<double>                                      &angles,
+      const bool                                                      verbose,
+      const std::function<void(results::StageState &, unsigned int)> &visit)
+      const
+    {
+      const bool root =
+        verbose && dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      // A long condensation (3D) shows its progress.
+      std::ostream *progress = root && dim == 3 ? &std::cout : nullptr;
+      const std::vector<double> torques = settings.loading.torque_values();
+      // wall_s: the work of the state after the mesh exists; a crank
+      // angle's condensation (or an anchored sweep's, for the first state)
+      // goes to the first state that needs it.
+      auto         start = Clock::now();
+      const auto   path = compliance_path(s, coarse, angles, progress, verbose);
+      double       setup_s = seconds_since(start);
+      unsigned int step    = 0;
+      double       beta    = 0;
+      for (unsigned int k = 0; k < angles.size(); ++k)
+        {
+          start            = Clock::now();
+          const auto phase = path ?
+                               std::make_unique<reduced::ReducedModel<dim>>(
+                                 s, coarse, angles[k], load_sign(), *path) :
+                               std::make_unique<reduced::ReducedModel<dim>>(
+                                 s, coarse, angles[k], load_sign(), progress);
+          setup_s += seconds_since(start);
+          if (root && (k == 0 || show_state(k, angles.size(), 0, 1)))
+            std::cout << "  crank angle " << angles[k] * u::deg_per_rad
+                      << " deg: " << phase->n_contacts()
+                      << (path ? " contacts interpolated in " :
+                                 " contacts condensed in ")
+                      << seconds_since(start) << " s (asymmetry "
+                      << phase->compliance().asymmetry << ")" << std::endl;
+          for (unsigned int t = 0; t < torques.size(); ++t, ++step)
+            {
+              start = Clock::now();
+              const analytic::LoadState load =
+                solve_state(*phase, torques, t, angles[k], step, beta);
+              beta                      = load.rotation;
+              results::StageState state = phase->stage_state(load);
+              state.step                = step;
+              state.wall_s              = seconds_since(start) + setup_s;
+              setup_s                   = 0;
+              visit(state, t);
+            }
+        }
+    }
+
+
+
+    template <int dim>
+    std::vector<results::StageState>
+    ReducedRun<dim>::companion_states(const reduced::CoarseModel<dim> &fine,
+                                      const std::vector<double>       &angles,
+                                      std::string &failure) const
+    {
+      const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      const reduced::ReducedSettings   s = settings.model.coarser();
+      std::vector<results::StageState> states;
+      try
+        {
+          reduced::CoarseModel<dim> coarse(s,
+                                           angles.front(),
+                                           angles.back() - angles.front(),
+                                           load_sign(),
+                                           comm);
+          if (root)
+            std::cout << "  error estimate: the same states on a coarser "
+                      << "companion (" << settings.model.coarser_description()
+                      << "), " << coarse.dofs() << " DoFs against "
+                      << fine.dofs() << std::endl;
+          const auto start = Clock::now();
+          solve_states(s,
+                       coarse,
+                       angles,
+                       false,
+                       [&](results::StageState &state, unsigned int) {
+                         states.push_back(state);
+                       });
+          if (root)
+            std::cout << "  companion solved in " << seconds_since(start)
+                      << " s" << std::endl;
+        }
+      catch (std::exception &e)
+        {
+          // The run goes on without an estimate for the states the
+          // companion did not reach; they say why.
+          failure        = e.what();
+          const auto end = failure.find_last_not_of(" \n");
+          failure.erase(end == std::string::npos ? 0 : end + 1);
+          if (root)
+            std::cout << "  error estimate: the companion model failed after "
+                      << states.size() << " state(s): " << failure << std::endl;
+        }
+      return states;
+    }
+
+
+
+    template <int dim>
+    void
     ReducedRun<dim>::run()
     {
       const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
@@ -200,60 +316,50 @@ namespace cycloid
                                        angles.back() - angles.front(),
                                        load_sign(),
                                        comm);
-      double                    mesh_s = seconds_since(start);
       if (root)
         std::cout << "  coarse model: " << coarse.dofs() << " DoFs, built in "
-                  << mesh_s << " s" << std::endl;
+                  << seconds_since(start) << " s" << std::endl;
       announce_cost(coarse, angles);
       // The files once the condensation is known to fit: a run stopped by
       // the memory check leaves none.
       postprocess::Report report(report_options(), comm);
-      // A long condensation (3D) shows its progress.
-      std::ostream *progress = root && dim == 3 ? &std::cout : nullptr;
-      const auto    path     = compliance_path(coarse, angles, progress);
-      unsigned int  step     = 0;
-      double        beta     = 0;
-      for (unsigned int k = 0; k < angles.size(); ++k)
-        {
-          auto       start_angle = Clock::now();
-          const auto phase =
-            path ? std::make_unique<reduced::ReducedModel<dim>>(
-                     settings.model, coarse, angles[k], load_sign(), *path) :
-                   std::make_unique<reduced::ReducedModel<dim>>(
-                     settings.model, coarse, angles[k], load_sign(), progress);
-          // The first crank angle's states carry the coarse model's cost.
-          double setup_s = seconds_since(start_angle) + mesh_s;
-          mesh_s         = 0;
-          if (root && (k == 0 || show_state(k, angles.size(), 0, 1)))
-            std::cout << "  crank angle " << angles[k] * u::deg_per_rad
-                      << " deg: " << phase->n_contacts()
-                      << (path ? " contacts interpolated in " :
-                                 " contacts condensed in ")
-                      << seconds_since(start_angle) << " s (asymmetry "
-                      << phase->compliance().asymmetry << ")" << std::endl;
-          for (unsigned int t = 0; t < torques.size(); ++t, ++step)
+      // The companion first, so that its factorisation is gone before the
+      // run's own is made.
+      std::string                            failure;
+      const std::vector<results::StageState> companion =
+        settings.model.reduced.error_estimate ?
+          companion_states(coarse, angles, failure) :
+          std::vector<results::StageState>();
+      const std::string method =
+        "against the companion, " + settings.model.coarser_description();
+      solve_states(
+        settings.model,
+        coarse,
+        angles,
+        true,
+        [&](results::StageState &state, const unsigned int t) {
+          const unsigned int step = state.step;
+          if (step < companion.size())
             {
-              const auto                start_state = Clock::now();
-              const analytic::LoadState load =
-                solve_state(*phase, torques, t, angles[k], step, beta);
-              beta                      = load.rotation;
-              results::StageState state = phase->stage_state(load);
-              state.step                = step;
-              state.wall_s              = seconds_since(start_state) + setup_s;
-              setup_s                   = 0;
-              state.peak_memory_MB      = results::peak_memory_MB(comm);
-              report.write(state, torques[t]);
-              if (root &&
-                  show_state(k,
-                             angles.size(),
-                             t,
-                             torques.size(),
-                             settings.loading.is_rated_state(torques[t])))
-                report.print(state,
-                             "  state " + std::to_string(step + 1) + "/" +
-                               std::to_string(n_states) + ": ");
+              results::set_error_estimate(companion[step], state, method);
+              state.wall_s += companion[step].wall_s;
             }
-        }
+          else if (settings.model.reduced.error_estimate)
+            {
+              state.error.method  = method;
+              state.error.failure = failure;
+            }
+          state.peak_memory_MB = results::peak_memory_MB(comm);
+          report.write(state, torques[t]);
+          if (root && show_state(step / torques.size(),
+                                 angles.size(),
+                                 t,
+                                 torques.size(),
+                                 settings.loading.is_rated_state(torques[t])))
+            report.print(state,
+                         "  state " + std::to_string(step + 1) + "/" +
+                           std::to_string(n_states) + ": ");
+        });
       report.finish();
       if (root)
         {

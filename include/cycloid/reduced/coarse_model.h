@@ -26,6 +26,21 @@ namespace cycloid
       /** The half-width w of the probing load [mm] (resolving `auto`). */
       double
       load_half_width() const;
+
+      /**
+       * The companion of the error estimate: the same scene one level
+       * coarser. One contact refinement fewer where the coarse model has
+       * any, else the in-plane element sizes (contact, flank, pin, far
+       * field) doubled; an `auto` load half-width follows the mesh (an
+       * explicit one is doubled), and 3D keeps half the axial slices (at
+       * least one). Its own estimate is off.
+       */
+      ReducedSettings
+      coarser() const;
+
+      /** What coarser() changes, for the console. */
+      std::string
+      coarser_description() const;
     };
 
     /**

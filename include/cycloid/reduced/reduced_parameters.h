@@ -38,6 +38,9 @@ namespace cycloid
        * coarse model, the others interpolated (0: condense at every
        * crank angle) [-]. */
       unsigned int anchor_angles = 3;
+      /** Estimate each state's error from the same state on a coarser
+       * companion model (ReducedSettings::coarser()). */
+      bool error_estimate = true;
 
       /** The contact refinements of a scene of dimension @p dim. */
       unsigned int

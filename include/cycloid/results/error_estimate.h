@@ -30,6 +30,21 @@ namespace cycloid
                        const unsigned int level);
 
     /**
+     * Set the error estimate of @p fine (its `error` and each pin's
+     * `fn_error`) from the same load state on a model one level coarser,
+     * @p coarse: each quantity's estimate is the change |Q_L - Q_L-1|,
+     * relative to |Q_L| for K_secant and K_tangent and to the state's
+     * largest pin force for the pins. The change is the error of the
+     * coarser model, so it bounds the finer one's as long as the error at
+     * least halves per level. @p method says on the console what the two
+     * levels are. (The reduced model; doc/reduced-model.md.)
+     */
+    void
+    set_error_estimate(const StageState  &coarse,
+                       StageState        &fine,
+                       const std::string &method);
+
+    /**
      * @brief The error of the bulk mesh (every cell that the contact
      * levels' estimate leaves as it is: all but the two finest levels) in
      * one load state: bulk_change_factor times the change that one

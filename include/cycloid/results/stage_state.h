@@ -123,9 +123,12 @@ namespace cycloid
       /** Contact refinement level of the state above the mesh's global
        * refinements (the finer of the two levels compared). */
       unsigned int contact_level = 0;
-      /** Why an FE state that should have an estimate has none (the
-       * coarser level failed); empty otherwise. */
+      /** Why a state that should have an estimate has none (the coarser
+       * level failed); empty otherwise. */
       std::string failure;
+      /** The levels compared, for the console, where they are not contact
+       * levels (the reduced model's companion); empty for FE states. */
+      std::string method;
 
       /** Whether the state has an estimate. */
       bool

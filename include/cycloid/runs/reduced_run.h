@@ -5,6 +5,7 @@
 #include <cycloid/postprocess/report.h>
 #include <cycloid/reduced/reduced_model.h>
 
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -64,11 +65,42 @@ namespace cycloid
 
       /** The interpolated compliance over @p angles if the sweep has more
        * crank angles than `Reduced/Anchor angles` (condensed at the
-       * anchors, with @p progress), else null. */
+       * anchors, with @p progress; @p verbose: say so), else null. */
       std::unique_ptr<reduced::CompliancePath<dim>>
-      compliance_path(reduced::CoarseModel<dim> &coarse,
-                      const std::vector<double> &angles,
-                      std::ostream              *progress) const;
+      compliance_path(const reduced::ReducedSettings &s,
+                      reduced::CoarseModel<dim>      &coarse,
+                      const std::vector<double>      &angles,
+                      std::ostream                   *progress,
+                      const bool                      verbose) const;
+
+      /**
+       * Every state of the run (each crank angle of @p angles [rad] and
+       * each torque) on @p coarse, a coarse model of @p s, handed to
+       * @p visit with its torque's index, in order. A state's wall_s is its
+       * own work once the mesh exists: its solve, and for the first torque
+       * at a crank angle that angle's condensation (an anchored sweep's
+       * condensation goes to the first state). @p verbose: the crank
+       * angles' console lines.
+       */
+      void
+      solve_states(const reduced::ReducedSettings          &s,
+                   reduced::CoarseModel<dim>               &coarse,
+                   const std::vector<double>               &angles,
+                   const bool                               verbose,
+                   const std::function<void(results::StageState &,
+                                            unsigned int)> &visit) const;
+
+      /**
+       * The error estimate's companion: every state of the run solved on
+       * a coarse model one level coarser than @p fine
+       * (reduced::ReducedSettings::coarser()), built, solved and freed
+       * here. If it fails, the states it reached, and the reason in
+       * @p failure.
+       */
+      std::vector<results::StageState>
+      companion_states(const reduced::CoarseModel<dim> &fine,
+                       const std::vector<double>       &angles,
+                       std::string                     &failure) const;
 
       /** Torque @p t of @p torques at @p crank_angle [rad] on @p phase,
        * from the rotation @p beta of the state before [rad] (a torque
