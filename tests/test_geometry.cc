@@ -415,3 +415,41 @@ TEST(StageLayout, ALayoutOfTheWrongSizeIsRefused)
   layout.pins.pop_back();
   EXPECT_THROW(CycloidGeometry(p, layout), dealii::ExceptionBase);
 }
+
+
+
+TEST(Geometry, ContactPointsOfEveryPinLieOnItsCircle)
+{
+  // Every pin's contact point lies on the pin, one clearance from it
+  // along the normal, and the pins on the line of the eccentricity (at
+  // the tooth tip and root, phase 0 and 180 deg) have an arm of exactly
+  // 0, as symmetry says. On a 30-pin stage with a modified profile (rp 75,
+  // rrp 4, e 1.5 mm) the root pin's arm was 9.66e-14 mm, round-off that a
+  // user read as 9.7 mm (issue #51); the seed as well.
+  GeometryParameters thirty     = modified(-0.01, 0.01);
+  thirty.n_pins                 = 30;
+  thirty.n_teeth                = 29;
+  thirty.pin_radius             = 4;
+  thirty.eccentricity           = 1.5;
+  thirty.shortening_coefficient = 1.5 * 30 / 75.;
+  thirty.automatic              = {true, true, true, true, true};
+  thirty.apply_auto_sizes();
+  for (const GeometryParameters &p : {thirty, modified(-0.01, 0.01)})
+    {
+      const CycloidGeometry g{p};
+      for (const double psi : {0., 0.3})
+        for (const PinContact &c : g.pin_contacts(0, psi))
+          {
+            const Tensor<1, 2> to_pin = g.pin_centre(c.pin) - c.contact_point;
+            EXPECT_NEAR(to_pin.norm(), p.pin_radius + c.clearance, 1e-9)
+              << "zp " << p.n_pins << ", pin " << c.pin << ", psi " << psi;
+            EXPECT_NEAR(to_pin * c.normal, to_pin.norm(), 1e-9)
+              << "zp " << p.n_pins << ", pin " << c.pin;
+            const double phase = std::fmod(c.phase, 2 * pi);
+            if (std::min(std::abs(phase), std::abs(phase - pi)) < 1e-6 ||
+                std::abs(phase - 2 * pi) < 1e-6)
+              EXPECT_EQ(c.arm, 0.) << "zp " << p.n_pins << ", pin " << c.pin
+                                   << " at phase " << c.phase;
+          }
+    }
+}

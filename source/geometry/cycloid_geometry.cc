@@ -193,12 +193,18 @@ namespace cycloid
       const double   d     = profiles[disc].signed_distance(q, &cp);
       const double   angle = disc_rotation(disc, psi);
       PinContact     result;
-      result.disc             = disc;
-      result.pin              = j;
-      result.clearance        = d - pin_radius(j);
-      result.contact_point    = to_housing(disc, psi, cp.point);
-      result.normal           = rotate(cp.normal, angle);
-      result.arm              = cross(Tensor<1, 2>(cp.point), cp.normal);
+      result.disc          = disc;
+      result.pin           = j;
+      result.clearance     = d - pin_radius(j);
+      result.contact_point = to_housing(disc, psi, cp.point);
+      result.normal        = rotate(cp.normal, angle);
+      result.arm           = cross(Tensor<1, 2>(cp.point), cp.normal);
+      // A pin on the line of the eccentricity (tooth tip or root) has no
+      // arm by symmetry; the closest point leaves round-off there (9.7e-14
+      // mm on a 30-pin stage), which a reader who misses the exponent
+      // takes for 9.7 mm.
+      if (std::abs(result.arm) < 1e-12 * rp)
+        result.arm = 0;
       result.phase            = wrap_two_pi(cp.phi);
       result.curvature_radius = cp.curvature_radius;
       result.disc_centre      = disc_centre(disc, psi);
