@@ -32,8 +32,21 @@ file). The script runs
     3D reference in K_secant but +1.5 % in K_tangent and +5 % in the
     largest pin force (doc/scene-guide.md): K_secant within 1 %, K_tangent
     within 2.5 %, pin forces within 5 % of the largest.
+* the reduced model's own error estimate (`Reduced/Error estimate`, on by
+  default): every state has K_secant_error, K_tangent_error and
+  max_pin_force_error, positive and not the same in every state, the same
+  on 1 and 2 ranks (1e-6), and each loaded pin its Fn_error_N; with
+  `Error estimate = false` every other column is the same string and the
+  estimates are empty. 2D: against the FE model, each state's difference
+  in K_secant is within the reduced model's estimate alone, and in
+  K_tangent and every pin force within the two estimates together (the FE
+  reference is not exact: its own estimate is 0.2-1.9 %). The K_secant
+  check fails if the near-field law's part of the estimate (5 (a/R)^2) is
+  left out: the companion's part alone is 0.03-0.07 % where the FE differs
+  by 0.06-0.24 %.
 """
 import argparse
+import math
 import os
 import sys
 from pathlib import Path
@@ -88,6 +101,71 @@ def compare(name, a, b, k_sec, k_tan, force_tol, same_pins=True):
         name, worst["K_secant"], worst["K_tangent"], worst["force"]))
 
 
+ESTIMATES = ["K_secant_error", "K_tangent_error", "max_pin_force_error"]
+
+
+def number(text):
+    return float(text) if text not in ("", None) else math.nan
+
+
+def check_estimates(name, a, other=None):
+    """The estimate of run @p a is there in every state, positive and not
+    the same everywhere; with @p other (the same run on other ranks) equal
+    to 1e-6."""
+    values = []
+    for k, sa in enumerate(a[0]):
+        e = [number(sa[q]) for q in ESTIMATES]
+        values.append(e)
+        check(all(x > 0 for x in e), "%s: state %s has no estimate: %s" % (name, sa["step"], e))
+        for p in a[1]:
+            if p["step"] == sa["step"] and float(p["Fn_N"]) > 0:
+                check(number(p["Fn_error_N"]) > 0, "%s: pin %s of state %s has no Fn_error_N"
+                      % (name, p["pin"], sa["step"]))
+        if other is not None:
+            for q, x in zip(ESTIMATES, e):
+                y = number(other[0][k][q])
+                check(abs(x - y) <= 1e-6 * abs(y), "%s: %s of state %s differs: %g vs %g"
+                      % (name, q, sa["step"], x, y))
+    check(len(values) < 2 or any(v != values[0] for v in values[1:]),
+          "%s: the same estimate in every state: %s" % (name, values))
+
+
+def check_off_switch(a, b):
+    """Run @p b (Error estimate = false) against @p a: every column but
+    the estimates, the warning flag and the costs the same string; no
+    estimates."""
+    skip = set(ESTIMATES) | {"mesh_warning", "wall_s", "peak_memory_MB", "Fn_error_N"}
+    for ra, rb in zip(a[0] + a[1], b[0] + b[1]):
+        for key in ra:
+            if key not in skip:
+                check(ra[key] == rb[key], "Error estimate = false changed %s: %s vs %s"
+                      % (key, ra[key], rb[key]))
+    for rb in b[0]:
+        check(all(math.isnan(number(rb[q])) for q in ESTIMATES),
+              "Error estimate = false still has an estimate in state %s" % rb["step"])
+
+
+def check_coverage(red, fe):
+    """Per state: |K_secant difference| <= the reduced estimate; K_tangent
+    and every pin force within the reduced and the FE estimates together."""
+    for sa, sb in zip(red[0], fe[0]):
+        for key, q, alone in [("K_secant_Nm_per_rad", "K_secant_error", True),
+                              ("K_tangent_Nm_per_rad", "K_tangent_error", False)]:
+            d = abs(float(sa[key]) / float(sb[key]) - 1)
+            band = number(sa[q]) + (0 if alone else number(sb[q]))
+            check(d <= band, "state %s: %s differs from the FE by %.3g, outside %s %.3g"
+                  % (sa["step"], key, d, "the estimate" if alone else "the two estimates", band))
+        fa, fb = forces(red[1], sa["step"]), forces(fe[1], sb["step"])
+        d = max(abs(fa.get(k, 0) - fb.get(k, 0)) for k in set(fa) | set(fb)) / max(fb.values())
+        band = number(sa["max_pin_force_error"]) + number(sb["max_pin_force_error"])
+        check(d <= band, "state %s: a pin force differs from the FE by %.3g of the largest, "
+              "outside the two estimates %.3g" % (sa["step"], d, band))
+        print("state %s: K_secant %.3f %% (estimate %.3f %%), pins %.3f %% (estimates %.3f %%)"
+              % (sa["step"], 100 * abs(float(sa["K_secant_Nm_per_rad"]) /
+                                       float(sb["K_secant_Nm_per_rad"]) - 1),
+                 100 * number(sa["K_secant_error"]), 100 * d, 100 * band))
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("prm")
@@ -103,6 +181,11 @@ def main():
     base = run(args.exe, text, args.work, "reduced-np2", 2)
     one = run(args.exe, text, args.work, "reduced-np1", 1)
     compare("1 vs 2 ranks", one, base, 1e-8, 1e-8, 1e-8)
+    check_estimates("reduced", base, one)
+    if not args.three_d:
+        check_off_switch(base, run(args.exe, text + "subsection Reduced\n"
+                                   "  set Error estimate = false\nend\n",
+                                   args.work, "reduced-no-estimate", 2))
 
     for w, cr in ([] if args.three_d else [("0.125", 3), ("0.5", 2)]):
         variant = text + ("subsection Reduced\n  set Load half-width = %s\n"
@@ -131,8 +214,10 @@ def main():
                "  set Contact refinement radius = 0.3\n"
                "  set Target accuracy = 0\nend\n")  # (the mesh asked for)
         tolerances = (1e-2, 1.5e-2, 2e-2)
-    compare("reduced vs full FE", base, run(args.exe, fe, args.work, "fe", 2),
-            *tolerances)
+    reference = run(args.exe, fe, args.work, "fe", 2)
+    compare("reduced vs full FE", base, reference, *tolerances)
+    if not args.three_d:
+        check_coverage(base, reference)
     return verdict()
 
 

@@ -306,6 +306,9 @@ namespace cycloid
       if (!std::isnan(s.error.bulk))
         std::cout << "; of these the bulk mesh's part up to "
                   << pct(s.error.bulk);
+      if (!std::isnan(s.error.model))
+        std::cout << "; of these the near-field law's own "
+                  << pct(s.error.model) << " (5 (a/R)^2)";
       std::cout << std::endl;
       if (!flag(s))
         return;

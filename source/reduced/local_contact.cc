@@ -74,5 +74,17 @@ namespace cycloid
               nu * (1. + nu) * (z * std::sqrt(a * a + z * z) - z * z) /
                 (a * a));
     }
+    double
+    near_field_error(const results::StageState &state, const double pin_radius)
+    {
+      double a = 0;
+      for (const auto &p : state.pins)
+        if (p.fn > 0)
+          a = std::max(a, p.hertz_halfwidth);
+      return near_field_error_factor * (a / pin_radius) * (a / pin_radius);
+    }
+
+
+
   } // namespace reduced
 } // namespace cycloid

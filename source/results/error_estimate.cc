@@ -89,6 +89,23 @@ namespace cycloid
 
 
 
+    void
+    add_model_error(const double part, StageState &state)
+    {
+      auto &e = state.error;
+      AssertThrow(e.available(),
+                  dealii::ExcMessage("a model error is added to an estimate"));
+      e.k_secant += part;
+      e.k_tangent += part;
+      e.max_pin_force += part;
+      const double f_max = state.max_pin_force();
+      for (auto &p : state.pins)
+        p.fn_error += part * f_max;
+      e.model = part;
+    }
+
+
+
     BulkError
     bulk_error(const StageState &bulk, const StageState &state)
     {

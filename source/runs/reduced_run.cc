@@ -342,6 +342,11 @@ namespace cycloid
           if (step < companion.size())
             {
               results::set_error_estimate(companion[step], state, method);
+              // The coarse model's part, plus the near-field law's own.
+              results::add_model_error(
+                reduced::near_field_error(
+                  state, settings.model.stage.geometry.pin_radius),
+                state);
               state.wall_s += companion[step].wall_s;
             }
           else if (settings.model.reduced.error_estimate)

@@ -44,6 +44,13 @@ namespace cycloid
                        StageState        &fine,
                        const std::string &method);
 
+    /** Add @p part, relative, to each figure of the estimate of @p state
+     * (which must have one): to K_secant's and K_tangent's, and to every
+     * pin's as @p part times the largest pin force; recorded as
+     * `error.model`. */
+    void
+    add_model_error(const double part, StageState &state);
+
     /**
      * @brief The error of the bulk mesh (every cell that the contact
      * levels' estimate leaves as it is: all but the two finest levels) in

@@ -120,6 +120,10 @@ namespace cycloid
        * estimate), the largest of its parts of the three figures above,
        * which include it; NaN where not estimated [-]. */
       double bulk = std::numeric_limits<double>::quiet_NaN();
+      /** The model's own part of the estimate, where it has one that no
+       * refinement removes (the reduced model's near-field law), relative,
+       * included in the three figures above; NaN otherwise [-]. */
+      double model = std::numeric_limits<double>::quiet_NaN();
       /** Contact refinement level of the state above the mesh's global
        * refinements (the finer of the two levels compared). */
       unsigned int contact_level = 0;
