@@ -40,6 +40,22 @@ namespace cycloid
 
 
 
+    void
+    print_if_shown(const postprocess::Report &report,
+                   const results::StageState &state,
+                   const unsigned int         n_k,
+                   const unsigned int         t,
+                   const unsigned int         n_t,
+                   const bool                 always)
+    {
+      if (show_state(state.step / n_t, n_k, t, n_t, always))
+        report.print(state,
+                     "  state " + std::to_string(state.step + 1) + "/" +
+                       std::to_string(n_k * n_t) + ": ");
+    }
+
+
+
     AnalyticRun::AnalyticRun(const Settings &settings, const MPI_Comm comm)
       : settings(settings)
       , comm(comm)
@@ -124,14 +140,12 @@ namespace cycloid
               // Only rank 0 computes (the others wait at the end).
               state.peak_memory_MB = results::peak_memory_MB(MPI_COMM_SELF);
               report.write(state, torques[t]);
-              if (show_state(step / torques.size(),
+              print_if_shown(report,
+                             state,
                              angles.size(),
                              t,
                              torques.size(),
-                             settings.loading.is_rated_state(torques[t])))
-                report.print(state,
-                             "  state " + std::to_string(step + 1) + "/" +
-                               std::to_string(n_states) + ": ");
+                             settings.loading.is_rated_state(torques[t]));
             }
         }
       report.finish();

@@ -356,14 +356,13 @@ namespace cycloid
             }
           state.peak_memory_MB = results::peak_memory_MB(comm);
           report.write(state, torques[t]);
-          if (root && show_state(step / torques.size(),
-                                 angles.size(),
-                                 t,
-                                 torques.size(),
-                                 settings.loading.is_rated_state(torques[t])))
-            report.print(state,
-                         "  state " + std::to_string(step + 1) + "/" +
-                           std::to_string(n_states) + ": ");
+          if (root)
+            print_if_shown(report,
+                           state,
+                           angles.size(),
+                           t,
+                           torques.size(),
+                           settings.loading.is_rated_state(torques[t]));
         });
       report.finish();
       if (root)

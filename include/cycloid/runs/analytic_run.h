@@ -3,6 +3,8 @@
 
 #include <cycloid/analytic/stage_model.h>
 #include <cycloid/parameters/loading.h>
+#include <cycloid/postprocess/report.h>
+#include <cycloid/results/stage_state.h>
 
 #include <mpi.h>
 
@@ -31,6 +33,18 @@ namespace cycloid
                const unsigned int t,
                const unsigned int n_t,
                const bool         always = false);
+
+    /** Print @p state (its `step` counts crank angle by crank angle, @p n_t
+     * torques each, over @p n_k crank angles; @p t its torque) through
+     * @p report as "  state i/n: ..." if show_state() says so (@p always:
+     * a rated-torque state). */
+    void
+    print_if_shown(const postprocess::Report &report,
+                   const results::StageState &state,
+                   const unsigned int         n_k,
+                   const unsigned int         t,
+                   const unsigned int         n_t,
+                   const bool                 always);
 
     /**
      * @brief `Run = analytic`: the analytical model over every crank angle
