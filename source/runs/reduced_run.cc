@@ -343,10 +343,12 @@ namespace cycloid
             {
               results::set_error_estimate(companion[step], state, method);
               // The coarse model's part, plus the near-field law's own.
-              results::add_model_error(
-                reduced::near_field_error(
-                  state, settings.model.stage.geometry.pin_radius),
-                state);
+              // (A torque cycle's zero-torque limits have no estimate.)
+              if (state.error.available())
+                results::add_model_error(
+                  reduced::near_field_error(
+                    state, settings.model.stage.geometry.pin_radius),
+                  state);
               state.wall_s += companion[step].wall_s;
             }
           else if (settings.model.reduced.error_estimate)
