@@ -44,6 +44,7 @@ namespace
     s.error.k_tangent       = 0.0456;
     s.error.max_pin_force   = 0.0789;
     s.error.bulk            = 0.0012;
+    s.error.model           = 0.0034;
     s.error.contact_level   = 3;
     s.error.failure         = "x";
     for (unsigned int j = 0; j < n_pins; ++j)
@@ -88,9 +89,9 @@ TEST(StateBuffer, StructsHaveTheFieldsThePackingKnows)
               2 * sizeof(unsigned int) /* active_nodes + padding */ +
               2 * sizeof(double) /* fn_error, hertz_nodes */);
   EXPECT_EQ(sizeof(results::ErrorEstimate),
-            4 * sizeof(double) +
+            5 * sizeof(double) +
               2 * sizeof(unsigned int) /* contact_level + padding */ +
-              sizeof(std::string));
+              2 * sizeof(std::string) /* failure, method (not packed) */);
   EXPECT_EQ(sizeof(results::StageState),
             2 * sizeof(unsigned int) /* step + padding */ + 6 * sizeof(double) +
               sizeof(std::vector<results::PinState>) +
@@ -109,7 +110,7 @@ TEST(StateBuffer, EveryFieldComesBackExactly)
     {
       const results::StageState a      = distinct_state(n_pins);
       const std::vector<double> buffer = results::StateBuffer::pack(a);
-      EXPECT_EQ(buffer.size(), 22u + 21u * n_pins);
+      EXPECT_EQ(buffer.size(), 23u + 21u * n_pins);
       const results::StageState b = results::StateBuffer::unpack(buffer);
       EXPECT_EQ(b.step, a.step);
       EXPECT_EQ(b.crank, a.crank);
@@ -130,6 +131,7 @@ TEST(StateBuffer, EveryFieldComesBackExactly)
       EXPECT_EQ(b.error.k_tangent, a.error.k_tangent);
       EXPECT_EQ(b.error.max_pin_force, a.error.max_pin_force);
       EXPECT_EQ(b.error.bulk, a.error.bulk);
+      EXPECT_EQ(b.error.model, a.error.model);
       EXPECT_EQ(b.error.contact_level, a.error.contact_level);
       EXPECT_FALSE(b.error.failure.empty());
       ASSERT_EQ(b.pins.size(), a.pins.size());

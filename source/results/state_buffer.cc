@@ -37,6 +37,7 @@ namespace cycloid
         f(s.error.k_tangent);
         f(s.error.max_pin_force);
         f(s.error.bulk);
+        f(s.error.model);
         f(s.error.contact_level);
       }
 
@@ -104,7 +105,9 @@ namespace cycloid
         buffer.push_back(static_cast<double>(x));
       };
       for_each_field(state, put);
-      // The reason of a failed estimate travels as a flag only.
+      // The reason of a failed estimate travels as a flag only, and the
+      // estimate's `method` not at all: it names the reduced model's
+      // companion, and only FE phase groups send states.
       buffer.push_back(state.error.failure.empty() ? 0. : 1.);
       buffer.push_back(state.pins.size());
       for (const PinState &p : state.pins)
