@@ -286,3 +286,70 @@ TEST(LoadDistribution, CrankHolesBreakExactPeriodicity)
   EXPECT_GT(std::abs(a - b), 1e-6 * a);
   EXPECT_LT(std::abs(a - b), 1e-2 * a);
 }
+
+
+
+TEST(Deviations, AnalyticModelOfZeroDeviationsIsTheNominalOne)
+{
+  // Every pin and both discs listed with zero deviations: the same load
+  // state to the last bit (the layout is the nominal one exactly).
+  auto nominal = seed_case("line-contact", -0.01, 0.01);
+  auto zero    = nominal;
+  for (unsigned int j = 0; j < zero.geometry.n_pins; ++j)
+    {
+      geometry::PinDeviation p;
+      p.pin = j;
+      zero.geometry.pin_deviations.push_back(p);
+    }
+  for (unsigned int d = 0; d < 2; ++d)
+    {
+      geometry::DiscDeviation q;
+      q.disc = d;
+      zero.geometry.disc_deviations.push_back(q);
+    }
+  const LoadState a = StageModel(nominal.model_settings()).solve(0.1, 800, 0);
+  const LoadState b = StageModel(zero.model_settings()).solve(0.1, 800, 0);
+  EXPECT_EQ(a.rotation, b.rotation);
+  EXPECT_EQ(a.k_tangent, b.k_tangent);
+  for (unsigned int k = 0; k < a.pins.size(); ++k)
+    EXPECT_EQ(a.pins[k].force, b.pins[k].force);
+}
+
+
+
+TEST(Deviations, APinPulledOutCarriesNothingAndTheOthersTakeTheTorque)
+{
+  // Pin 5 of disc 0's loaded side moved 40 um away from the housing
+  // centre: its clearance grows by 40 um times the radial part of its
+  // normal (more than the elastic approach of 800 N m), so it carries
+  // nothing; the torque balance holds with the others, which carry more,
+  // and the stage is softer.
+  auto                   nominal = seed_case("line-contact", -0.01, 0.01);
+  auto                   moved   = nominal;
+  geometry::PinDeviation p;
+  p.pin       = 5;
+  p.radial_um = 40;
+  moved.geometry.pin_deviations.push_back(p);
+  const StageModel m0(nominal.model_settings()), m1(moved.model_settings());
+  const LoadState  a = m0.solve(0.0, 800, 0), b = m1.solve(0.0, 800, 0);
+  double           torque = 0;
+  for (const PinLoad &q : b.pins)
+    {
+      torque += q.force * q.contact.arm * 1e-3;
+      if (q.contact.disc == 0 && q.contact.pin == 5)
+        {
+          EXPECT_EQ(q.force, 0.);
+          const geometry::CycloidGeometry g0(nominal.geometry);
+          const auto                      c0 = g0.pin_contact(0, 5, 0.0);
+          const dealii::Tensor<1, 2>      radial(
+            {std::cos(2 * pi * 5 / 40), std::sin(2 * pi * 5 / 40)});
+          // To first order in the move (its square over rrp left out).
+          EXPECT_NEAR(q.contact.clearance - c0.clearance,
+                      40e-3 * (c0.normal * radial),
+                      40e-3 * 40e-3 / 3.);
+          EXPECT_GT(q.contact.clearance - c0.clearance, 0.02);
+        }
+    }
+  EXPECT_NEAR(torque, 800., 1e-6 * 800.);
+  EXPECT_GT(b.rotation, a.rotation);
+}

@@ -7,13 +7,17 @@
 #include <deal.II/base/numbers.h>
 
 #include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/geometry/deviations.h>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <random>
+#include <sstream>
 
 using namespace cycloid::geometry;
 
@@ -452,4 +456,175 @@ TEST(Geometry, ContactPointsOfEveryPinLieOnItsCircle)
                                    << " at phase " << c.phase;
           }
     }
+}
+
+
+
+namespace
+{
+  /** A file with @p text in the system's temporary directory; its path. */
+  std::string
+  temporary_file(const std::string &name, const std::string &text)
+  {
+    const std::string path =
+      (std::filesystem::temp_directory_path() / ("cycloid-" + name)).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  /** The message of the exception @p f throws, its white space runs
+   * made single spaces (deal.II wraps a long message); "" if none. */
+  template <typename F>
+  std::string
+  message_of(F &&f)
+  {
+    try
+      {
+        f();
+      }
+    catch (const std::exception &e)
+      {
+        std::string text, word;
+        for (std::istringstream in(e.what()); in >> word;)
+          text += (text.empty() ? "" : " ") + word;
+        return text;
+      }
+    return "";
+  }
+} // namespace
+
+
+
+TEST(Deviations, FilesOfZerosGiveTheNominalLayoutExactly)
+{
+  const GeometryParameters p    = modified(-0.01, 0.01);
+  std::string              pins = "pin,radial_um,tangential_um,radius_um\n";
+  for (unsigned int j = 0; j < p.n_pins; ++j)
+    pins += std::to_string(j) + ",0,0,0\n";
+  const auto laid = deviated_layout(
+    p,
+    read_pin_deviations(temporary_file("zero-pins.csv", pins), p.n_pins),
+    read_disc_deviations(temporary_file(
+      "zero-discs.csv",
+      "disc,eccentricity_um,angle_arcmin,pin_circle_um,pin_radius_um\n"
+      "0,0,0,0,0\n1,0,0,0,0\n")));
+  const StageLayout nominal = StageLayout::nominal(p);
+  for (unsigned int j = 0; j < p.n_pins; ++j)
+    {
+      EXPECT_EQ(laid.pins[j].centre, nominal.pins[j].centre);
+      EXPECT_EQ(laid.pins[j].radius, nominal.pins[j].radius);
+    }
+  for (unsigned int d = 0; d < 2; ++d)
+    {
+      EXPECT_EQ(laid.discs[d].eccentricity, nominal.discs[d].eccentricity);
+      EXPECT_EQ(laid.discs[d].index_angle, nominal.discs[d].index_angle);
+      EXPECT_EQ(laid.discs[d].delta_pin_radius,
+                nominal.discs[d].delta_pin_radius);
+    }
+}
+
+
+
+TEST(Deviations, EachColumnMovesWhatItNames)
+{
+  // Pin 10 of 40 sits at 90 deg: radial is +y, the counter-clockwise
+  // tangent -x. Disc 1's angle in arcmin, its eccentricity and its
+  // profile's modifications in um.
+  const GeometryParameters p    = modified(-0.01, 0.01);
+  const auto               laid = deviated_layout(
+    p,
+    read_pin_deviations(
+      temporary_file("move-pins.csv",
+                     "# pin 10 out by 5 um, 3 um along, 2 um thicker\n"
+                                   "radius_um,pin,tangential_um,radial_um\n"
+                                   "2,10,3,5\n"),
+      p.n_pins),
+    read_disc_deviations(temporary_file(
+      "move-discs.csv",
+      "disc,eccentricity_um,angle_arcmin,pin_circle_um,pin_radius_um\n"
+                    "1,4,0.5,-2,3\n")));
+  const StageLayout nominal = StageLayout::nominal(p);
+  const auto        moved   = laid.pins[10].centre - nominal.pins[10].centre;
+  EXPECT_NEAR(moved[0], -3e-3, 1e-12);
+  EXPECT_NEAR(moved[1], 5e-3, 1e-12);
+  EXPECT_NEAR(laid.pins[10].radius, p.pin_radius + 2e-3, 1e-15);
+  EXPECT_EQ(laid.pins[11].centre, nominal.pins[11].centre);
+  EXPECT_NEAR(laid.discs[1].eccentricity, p.eccentricity + 4e-3, 1e-15);
+  EXPECT_NEAR(laid.discs[1].index_angle, 0.5 / 60. * pi / 180., 1e-18);
+  EXPECT_NEAR(laid.discs[1].delta_pin_circle_radius, -0.01 - 2e-3, 1e-15);
+  EXPECT_NEAR(laid.discs[1].delta_pin_radius, 0.01 + 3e-3, 1e-15);
+  EXPECT_EQ(laid.discs[0].eccentricity, nominal.discs[0].eccentricity);
+}
+
+
+
+TEST(Deviations, ThickerPinsInDiscsGroundForThemKeepEveryClearance)
+{
+  // Every pin 10 um thicker and both discs ground with Delta rrp 10 um
+  // more: the equidistant profile moves out by exactly what the pins
+  // grew, so every clearance and arm is the nominal stage's.
+  const GeometryParameters p    = modified(-0.01, 0.01);
+  std::string              pins = "pin,radial_um,tangential_um,radius_um\n";
+  for (unsigned int j = 0; j < p.n_pins; ++j)
+    pins += std::to_string(j) + ",0,0,10\n";
+  const CycloidGeometry thick(
+    p,
+    deviated_layout(
+      p,
+      read_pin_deviations(temporary_file("thick-pins.csv", pins), p.n_pins),
+      read_disc_deviations(temporary_file(
+        "thick-discs.csv",
+        "disc,eccentricity_um,angle_arcmin,pin_circle_um,pin_radius_um\n"
+        "0,0,0,0,10\n1,0,0,0,10\n"))));
+  const CycloidGeometry nominal(p);
+  for (unsigned int disc = 0; disc < 2; ++disc)
+    for (unsigned int j = 0; j < p.n_pins; ++j)
+      {
+        const PinContact a = thick.pin_contact(disc, j, 0.2);
+        const PinContact b = nominal.pin_contact(disc, j, 0.2);
+        EXPECT_NEAR(a.clearance, b.clearance, 1e-12) << "pin " << j;
+        EXPECT_NEAR(a.arm, b.arm, 1e-9) << "pin " << j;
+      }
+}
+
+
+
+TEST(Deviations, ABadFileIsNamedWithItsLineAndColumn)
+{
+  const unsigned int n = 40;
+  const auto pin       = [n](const std::string &name, const std::string &text) {
+    return message_of(
+      [&] { read_pin_deviations(temporary_file(name, text), n); });
+  };
+  const std::string header = "pin,radial_um,tangential_um,radius_um\n";
+  const std::string nan    = pin("bad-number.csv", header + "3,1,abc,0\n");
+  EXPECT_NE(nan.find("Deviations/Pin deviations file"), std::string::npos);
+  EXPECT_NE(nan.find("bad-number.csv"), std::string::npos) << nan;
+  EXPECT_NE(nan.find("line 2, column 'tangential_um': 'abc' is not a number"),
+            std::string::npos)
+    << nan;
+  EXPECT_NE(pin("range.csv", header + "1,0,0,0\n40,0,0,0\n")
+              .find("line 3, column 'pin': 40 is not an index from 0 to 39"),
+            std::string::npos);
+  EXPECT_NE(pin("twice.csv", header + "7,0,0,0\n# again\n7,1,0,0\n")
+              .find("line 4, column 'pin': pin 7 is listed twice (also on "
+                    "line 2)"),
+            std::string::npos);
+  EXPECT_NE(pin("no-column.csv", "pin,radial_um,radius_um\n1,0,0\n")
+              .find("line 1: no column 'tangential_um'"),
+            std::string::npos);
+  EXPECT_NE(pin("short-row.csv", header + "1,0,0\n")
+              .find("line 2: 3 values for 4 columns"),
+            std::string::npos);
+  EXPECT_NE(message_of([] {
+              read_pin_deviations("/nonexistent/p.csv", 40);
+            }).find("'/nonexistent/p.csv': cannot be read"),
+            std::string::npos);
+  EXPECT_NE(message_of([] {
+              read_disc_deviations(temporary_file(
+                "disc-range.csv",
+                "disc,eccentricity_um,angle_arcmin,pin_circle_um,"
+                "pin_radius_um\n2,0,0,0,0\n"));
+            }).find("Deviations/Disc deviations file"),
+            std::string::npos);
 }

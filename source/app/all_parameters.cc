@@ -7,6 +7,7 @@
 #include <cycloid/parameters/or_auto.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -46,6 +47,7 @@ namespace cycloid
       dynamics::TransientParameters::declare_parameters(prm);
       profile::ProfileParameters::declare_parameters(prm);
       reduced::ReducedParameters::declare_parameters(prm);
+      geometry::DeviationsParameters::declare_parameters(prm);
     }
 
 
@@ -64,6 +66,7 @@ namespace cycloid
       transient.parse_parameters(prm);
       profile.parse_parameters(prm);
       reduced.parse_parameters(prm);
+      deviations.parse_parameters(prm);
       // Where the run mode and the dimension are both known.
       notes.clear();
       const std::string discs = scene.resolve_number_of_discs(run.fe());
@@ -202,6 +205,29 @@ namespace cycloid
 
 
 
+    void
+    AllParameters::read_deviations(const std::string &directory)
+    {
+      if (!deviations.any())
+        return;
+      AssertThrow(run.mode == parameters::RunParameters::Mode::analytic,
+                  dealii::ExcMessage(
+                    "Deviations: Run = " + run.mode_name +
+                    " does not honour manufacturing deviations yet (only Run "
+                    "= analytic does: the meshes still place every pin as "
+                    "drawn); leave Deviations/Pin deviations file and Disc "
+                    "deviations file empty, or use Run = analytic."));
+      deviations.read_into(geometry, directory);
+      const geometry::CycloidGeometry geo(geometry);
+      geometry::check_rest_overlap(geo,
+                                   loading.crank_angles(geo.mesh_period()),
+                                   scene.n_discs,
+                                   deviations,
+                                   directory);
+    }
+
+
+
     AllParameters
     AllParameters::read(const std::string &filename)
     {
@@ -220,6 +246,22 @@ namespace cycloid
       // a given rp (and writes it back for parameters.prm).
       check_pin_circle(prm, result.set_in_file);
       result.parse_parameters(prm);
+      const std::string directory =
+        std::filesystem::path(filename).parent_path().string();
+      result.read_deviations(directory);
+      // The files as absolute paths, so that parameters.prm repeats the run
+      // from its own directory.
+      prm.enter_subsection("Deviations");
+      for (const auto &[entry, file] :
+           {std::make_pair("Pin deviations file", result.deviations.pin_file),
+            std::make_pair("Disc deviations file",
+                           result.deviations.disc_file)})
+        if (!file.empty())
+          prm.set(entry,
+                  std::filesystem::absolute(
+                    geometry::DeviationsParameters::resolve(file, directory))
+                    .string());
+      prm.leave_subsection();
       dealii::ParameterHandler defaults;
       declare_parameters(defaults);
       for (const auto &entry : result.set_in_file)

@@ -8,6 +8,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/geometry/deviations.h>
 
 #include <algorithm>
 #include <cmath>
@@ -53,7 +54,10 @@ namespace cycloid
 
 
     CycloidGeometry::CycloidGeometry(const GeometryParameters &parameters)
-      : CycloidGeometry(parameters, StageLayout::nominal(parameters))
+      : CycloidGeometry(parameters,
+                        deviated_layout(parameters,
+                                        parameters.pin_deviations,
+                                        parameters.disc_deviations))
     {}
 
 

@@ -8,6 +8,7 @@
 #include <cycloid/contact/contact_parameters.h>
 #include <cycloid/dynamics/transient_parameters.h>
 #include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/geometry/deviations.h>
 #include <cycloid/mesh/mesh_parameters.h>
 #include <cycloid/mesh/stage_mesh.h>
 #include <cycloid/parameters/loading.h>
@@ -50,6 +51,8 @@ namespace cycloid
       profile::ProfileParameters profile;
       /** Subsection Reduced (Run = reduced). */
       reduced::ReducedParameters reduced;
+      /** Subsection Deviations: read into `geometry` by read(). */
+      geometry::DeviationsParameters deviations;
 
       /**
        * Every entry with the value this run uses, as a parameter file
@@ -115,6 +118,15 @@ namespace cycloid
        * states). */
       void
       resolve_bulk_error(bool solves);
+
+      /**
+       * Read the deviations files (relative paths from @p directory) into
+       * `geometry`, refuse them in a run mode that does not honour them
+       * yet, and check that no deviated pin overlaps a disc at rest at the
+       * run's crank angles.
+       */
+      void
+      read_deviations(const std::string &directory);
 
       /**
        * Declare, read @p filename (with a clear error if it does not exist

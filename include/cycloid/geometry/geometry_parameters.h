@@ -3,9 +3,12 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <cycloid/geometry/deviation_data.h>
+
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace cycloid
 {
@@ -82,6 +85,11 @@ namespace cycloid
        * not set says that the value is a default.
        */
       std::optional<std::set<std::string>> set_in_file;
+      /** The pins' manufacturing deviations (subsection `Deviations`;
+       * empty: every pin as drawn). CycloidGeometry(prm) honours them. */
+      std::vector<PinDeviation> pin_deviations;
+      /** The discs' manufacturing deviations (empty: as drawn). */
+      std::vector<DiscDeviation> disc_deviations;
 
       /** Declare the entries of subsection `Geometry`. */
       static void
