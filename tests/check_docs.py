@@ -7,7 +7,7 @@ Links: every Markdown link [text](target) of README.md and doc/**/*.md
 whose target is not a URL must name a file of the repository, and a
 #fragment on a Markdown file must be one of its headings (GitHub's anchor:
 lower case, punctuation dropped, spaces to hyphens, -1, -2 ... for repeats).
-No page may point at the project's private ../shared notes.
+No link may lead outside the repository: the project documents itself.
 
 Snippets: every indented or fenced block of README.md and doc/**/*.md that
 is parameter-file text (only `set`, `subsection`, `end` and comment lines,
@@ -79,14 +79,15 @@ def check_links(root):
         with open(page, encoding="utf-8") as f:
             text = without_code(f.read())
         rel = os.path.relpath(page, root)
-        check("../shared" not in text and "shared/design.md" not in text,
-              "%s points at the private ../shared notes" % rel)
         for target in LINK.findall(text) + IMAGE.findall(text):
             if re.match(r"^[a-z]+:", target):
                 continue
             n += 1
             path, _, fragment = target.partition("#")
             full = os.path.normpath(os.path.join(os.path.dirname(page), path)) if path else page
+            if not check(os.path.commonpath([root, full]) == root,
+                         "%s: link to %s leads outside the repository" % (rel, target)):
+                continue
             if not check(os.path.exists(full), "%s: link to %s: no such file" % (rel, target)):
                 continue
             if fragment and full.endswith(".md"):
