@@ -210,13 +210,6 @@ namespace cycloid
     {
       if (!deviations.any())
         return;
-      AssertThrow(run.mode == parameters::RunParameters::Mode::analytic,
-                  dealii::ExcMessage(
-                    "Deviations: Run = " + run.mode_name +
-                    " does not honour manufacturing deviations yet (only Run "
-                    "= analytic does: the meshes still place every pin as "
-                    "drawn); leave Deviations/Pin deviations file and Disc "
-                    "deviations file empty, or use Run = analytic."));
       deviations.read_into(geometry, directory);
       const geometry::CycloidGeometry geo(geometry);
       geometry::check_rest_overlap(geo,

@@ -181,6 +181,27 @@ namespace cycloid
 
 
         /**
+         * Where the circle of centre @p c and radius @p r (a pin's groove)
+         * crosses the circle of radius @p rp about the stage axis: the
+         * point before (clockwise of) the pin, then the one after. For a
+         * nominal pin this is rp (cos(a -+ half), sin(a -+ half)).
+         */
+        std::pair<dealii::Point<2>, dealii::Point<2>>
+        groove_ends(const dealii::Point<2> &c, const double r, const double rp)
+        {
+          const double d = c.norm();
+          // Along c from the axis, then across it.
+          const double along           = (d * d + rp * rp - r * r) / (2. * d);
+          const double across          = std::sqrt(rp * rp - along * along);
+          const dealii::Tensor<1, 2> u = c / d;
+          const dealii::Tensor<1, 2> t({-u[1], u[0]});
+          return {dealii::Point<2>(along * u - across * t),
+                  dealii::Point<2>(along * u + across * t)};
+        }
+
+
+
+        /**
          * The housing's sector of pin @p j, from the radial line half a
          * pitch before the pin to the one half a pitch after it: the inner
          * side (land, the groove split at its outermost point, land) and
@@ -200,26 +221,35 @@ namespace cycloid
           const double       rp   = frame.rp;
           const double       half = frame.half;
           const unsigned int next = (j + 1) % g.n_pins;
-          // The groove's ends sit on the nominal pin circle (the housing is
-          // cut where the design puts the pins); its seat follows pin j
-          // as the layout has it.
-          const double a      = frame.pitch * j;
-          const auto   c      = geometry.pin_centre(j);
-          const int    centre = geo::addPoint(c[0], c[1], 0, lc);
-          const int    before = geo::addPoint(rp * std::cos(a - half),
-                                           rp * std::sin(a - half),
-                                           0,
-                                           lc);
-          const double r      = geometry.pin_radius(j);
-          const int    top    = geo::addPoint(c[0] + r * std::cos(a),
+          // The groove is pin j's circle as the layout has it (a pin moved
+          // or thicker than drawn sits in a seat that fits it); its ends are
+          // where that circle crosses the nominal pin circle, the housing's
+          // inner side, so that both arcs meeting there are exact.
+          const double a = frame.pitch * j;
+          const auto   c = geometry.pin_centre(j);
+          const double r = geometry.pin_radius(j);
+          // A nominal pin keeps the expressions its mesh was always built
+          // with (the same mesh to the last bit without deviations).
+          const bool nominal =
+            c == dealii::Point<2>(rp * std::cos(2. * pi * j / g.n_pins),
+                                  rp * std::sin(2. * pi * j / g.n_pins)) &&
+            r == g.pin_radius;
+          const auto ends =
+            nominal ?
+              std::make_pair(dealii::Point<2>(rp * std::cos(a - half),
+                                              rp * std::sin(a - half)),
+                             dealii::Point<2>(rp * std::cos(a + half),
+                                              rp * std::sin(a + half))) :
+              groove_ends(c, r, rp);
+          const int centre = geo::addPoint(c[0], c[1], 0, lc);
+          const int before = geo::addPoint(ends.first[0], ends.first[1], 0, lc);
+          const int top    = geo::addPoint(c[0] + r * std::cos(a),
                                         c[1] + r * std::sin(a),
                                         0,
                                         lc);
-          const int    after  = geo::addPoint(rp * std::cos(a + half),
-                                          rp * std::sin(a + half),
-                                          0,
-                                          lc);
-          const int    arc0 =
+          const int after =
+            geo::addPoint(ends.second[0], ends.second[1], 0, lc);
+          const int arc0 =
             geo::addCircleArc(frame.inner_pt[j], frame.origin, before);
           const int groove0 = geo::addCircleArc(before, centre, top);
           const int groove1 = geo::addCircleArc(top, centre, after);

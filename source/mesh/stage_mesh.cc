@@ -52,6 +52,7 @@ namespace cycloid
        * no crank holes break the discs' symmetry. Mesh psi' = psi mod
        * 2 pi/zp and turn the mesh by k pitches, relabelling the pins, so
        * that states a whole number of periods apart have identical meshes.
+       * Not with manufacturing deviations.
        */
       PeriodicPlacement
       periodic_placement(const MeshSettings              &settings,
@@ -60,7 +61,11 @@ namespace cycloid
       {
         const auto       &g = settings.geometry;
         PeriodicPlacement placement{psi, 0};
-        if (settings.mesh.periodic && g.n_crank_holes == 0)
+        // Manufacturing deviations make every pin and disc its own: a
+        // stage turned by a pitch is then another stage.
+        const bool deviated =
+          !g.pin_deviations.empty() || !g.disc_deviations.empty();
+        if (settings.mesh.periodic && g.n_crank_holes == 0 && !deviated)
           {
             const double period = geometry.mesh_period();
             const double k      = std::floor(psi / period + 1e-9);
