@@ -47,6 +47,7 @@ namespace cycloid
       dynamics::TransientParameters::declare_parameters(prm);
       profile::ProfileParameters::declare_parameters(prm);
       reduced::ReducedParameters::declare_parameters(prm);
+      tolerance::ToleranceParameters::declare_parameters(prm);
       geometry::DeviationsParameters::declare_parameters(prm);
     }
 
@@ -66,6 +67,7 @@ namespace cycloid
       transient.parse_parameters(prm);
       profile.parse_parameters(prm);
       reduced.parse_parameters(prm);
+      tolerance.parse_parameters(prm);
       deviations.parse_parameters(prm);
       // Where the run mode and the dimension are both known.
       notes.clear();

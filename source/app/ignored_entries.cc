@@ -46,7 +46,8 @@ namespace cycloid
                            Mode::quasi_static,
                            Mode::phase_sweep,
                            Mode::transient,
-                           Mode::reduced};
+                           Mode::reduced,
+                           Mode::tolerance};
 
       /**
        * Which run mode ignores what. The rule of thumb: `analytic` reads
@@ -65,7 +66,11 @@ namespace cycloid
       {
         static const std::vector<Rule> table{
           {"Write solution",
-           {Mode::analytic, Mode::mesh, Mode::profile, Mode::reduced},
+           {Mode::analytic,
+            Mode::mesh,
+            Mode::profile,
+            Mode::reduced,
+            Mode::tolerance},
            "it writes no FE fields"},
           {"Material/*", {Mode::mesh, Mode::profile}, "it solves nothing"},
           {"Loading/*", {Mode::profile}, "it only draws the profile"},
@@ -76,10 +81,10 @@ namespace cycloid
            {Mode::analytic},
            "the analytic model is torque-controlled"},
           {"Loading/Control",
-           {Mode::reduced},
+           {Mode::reduced, Mode::tolerance},
            "the reduced model is torque-controlled"},
           {"Loading/Rotation",
-           {Mode::reduced},
+           {Mode::reduced, Mode::tolerance},
            "the reduced model is torque-controlled"},
           {"Loading/Number of phases",
            {Mode::quasi_static},
@@ -132,31 +137,35 @@ namespace cycloid
            "a 2D scene has one disc",
            two_d},
           {"Contact/*",
-           {Mode::analytic, Mode::mesh, Mode::profile, Mode::reduced},
+           {Mode::analytic,
+            Mode::mesh,
+            Mode::profile,
+            Mode::reduced,
+            Mode::tolerance},
            "it solves no FE contact"},
           {"Mesh/Contact refinements",
-           {Mode::reduced},
+           {Mode::reduced, Mode::tolerance},
            "its coarse model is refined by Reduced/Contact refinements"},
           {"Mesh/Contact refinement side",
-           {Mode::reduced},
+           {Mode::reduced, Mode::tolerance},
            "its coarse model is refined at the loaded side of its torques"},
           {"Mesh/Adaptive refinement cycles",
-           {Mode::reduced},
+           {Mode::reduced, Mode::tolerance},
            "its coarse model is not refined adaptively"},
           {"Mesh/Error estimate",
-           {Mode::mesh, Mode::transient, Mode::reduced},
+           {Mode::mesh, Mode::transient, Mode::reduced, Mode::tolerance},
            "it estimates no FE state's error (transient: one mesh through "
            "the run)"},
           {"Mesh/Warning threshold",
-           {Mode::mesh, Mode::transient, Mode::reduced},
+           {Mode::mesh, Mode::transient, Mode::reduced, Mode::tolerance},
            "it estimates no FE state's error (transient: one mesh through "
            "the run)"},
           {"Mesh/Target accuracy",
-           {Mode::mesh, Mode::transient, Mode::reduced},
+           {Mode::mesh, Mode::transient, Mode::reduced, Mode::tolerance},
            "it estimates no FE state's error (transient: one mesh through "
            "the run)"},
           {"Mesh/Maximum accuracy cycles",
-           {Mode::mesh, Mode::transient, Mode::reduced},
+           {Mode::mesh, Mode::transient, Mode::reduced, Mode::tolerance},
            "it estimates no FE state's error (transient: one mesh through "
            "the run)"},
           {"Mesh/Triangulation",
@@ -164,17 +173,21 @@ namespace cycloid
            "it writes the mesh of the shared triangulation (every cell on "
            "every rank)"},
           {"Mesh/Maximum sweep refinements",
-           {Mode::quasi_static, Mode::mesh, Mode::transient, Mode::reduced},
+           {Mode::quasi_static,
+            Mode::mesh,
+            Mode::transient,
+            Mode::reduced,
+            Mode::tolerance},
            "only Run = phase-sweep repeats itself to resolve a fluctuation"},
           {"Mesh/Axial layers per disc",
-           {Mode::reduced},
+           {Mode::reduced, Mode::tolerance},
            "its coarse model has Reduced/Axial layers per disc"},
           {"Reduced/Axial layers per disc",
-           {Mode::reduced},
+           {Mode::reduced, Mode::tolerance},
            "a 2D scene has no axial layers",
            two_d},
           {"Reduced/Axial slices per disc",
-           {Mode::reduced},
+           {Mode::reduced, Mode::tolerance},
            "a 2D scene has no axial slices",
            two_d},
           {"Reduced/*",
@@ -184,7 +197,7 @@ namespace cycloid
             Mode::phase_sweep,
             Mode::transient,
             Mode::profile},
-           "only Run = reduced reads it"},
+           "only Run = reduced and tolerance read it"},
           {"Solver/*",
            {Mode::analytic, Mode::mesh, Mode::profile},
            "it solves no FE contact"},
@@ -194,15 +207,26 @@ namespace cycloid
             Mode::quasi_static,
             Mode::phase_sweep,
             Mode::reduced,
+            Mode::tolerance,
             Mode::profile},
            "only Run = transient reads it"},
+          {"Tolerance study/*",
+           {Mode::analytic,
+            Mode::mesh,
+            Mode::quasi_static,
+            Mode::phase_sweep,
+            Mode::transient,
+            Mode::reduced,
+            Mode::profile},
+           "only Run = tolerance reads it"},
           {"Profile/*",
            {Mode::analytic,
             Mode::mesh,
             Mode::quasi_static,
             Mode::phase_sweep,
             Mode::transient,
-            Mode::reduced},
+            Mode::reduced,
+            Mode::tolerance},
            "only Run = profile reads it"},
         };
         return table;
@@ -228,6 +252,8 @@ namespace cycloid
               return "transient";
             case Mode::reduced:
               return "reduced";
+            case Mode::tolerance:
+              return "tolerance";
             case Mode::profile:
               return "profile";
           }

@@ -11,6 +11,7 @@
 #include <cycloid/runs/profile_run.h>
 #include <cycloid/runs/quasi_static.h>
 #include <cycloid/runs/reduced_run.h>
+#include <cycloid/runs/tolerance_run.h>
 #include <cycloid/runs/transient.h>
 
 #include <algorithm>
@@ -138,6 +139,15 @@ namespace cycloid
                 typename runs::ReducedRun<dim>::Settings{
                   {without_estimate(stage_settings(prm)), prm.reduced},
                   prm.loading},
+                prm,
+                comm);
+              return;
+            case Mode::tolerance:
+              build_and_run<runs::ToleranceRun<dim>>(
+                typename runs::ToleranceRun<dim>::Settings{
+                  {without_estimate(stage_settings(prm)), prm.reduced},
+                  prm.loading,
+                  prm.tolerance},
                 prm,
                 comm);
               return;

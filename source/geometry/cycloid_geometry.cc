@@ -85,7 +85,8 @@ namespace cycloid
                     " and two discs were expected."));
       for (const DiscData &disc : layout.discs)
         profiles.emplace_back(parameters, rp, disc);
-      validate();
+      if (parameters.check_drawing)
+        validate();
     }
 
 

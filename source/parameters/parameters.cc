@@ -351,6 +351,11 @@ namespace cycloid
          "analytic line-contact law (near FE accuracy at a fraction of its "
          "cost), Reduced subsection; driven like 'analytic' by the Torque "
          "list and crank angles"},
+        {Mode::tolerance,
+         "tolerance",
+         "a Monte-Carlo study of the stage under manufacturing tolerances "
+         "(reduced or analytic model, the nominal compliance reused for "
+         "every sample), Tolerance study subsection"},
         {Mode::quasi_static,
          "quasi-static",
          "FE contact at Crank angle, for the torque(s)"},

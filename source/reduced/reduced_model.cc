@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
 
 namespace cycloid
 {
@@ -122,11 +123,12 @@ namespace cycloid
                                     std::ostream           *progress)
       : settings(settings)
       , psi(psi)
+      , psi_mesh(coarse.crank_angle())
       , model(settings.stage.model_settings())
       , pins(model.unloaded_pins(psi))
       , n_dofs(coarse.dofs())
     {
-      select_contacts(coarse, [&](const geometry::PinContact &c) {
+      select_contacts([&](const geometry::PinContact &c) {
         return only.count({c.disc, c.pin}) > 0;
       });
       if (progress)
@@ -147,11 +149,12 @@ namespace cycloid
                                     const CompliancePath<dim> &path)
       : settings(settings)
       , psi(psi)
+      , psi_mesh(coarse.crank_angle())
       , model(settings.stage.model_settings())
       , pins(model.unloaded_pins(psi))
       , n_dofs(coarse.dofs())
     {
-      select_contacts(coarse, [&](const geometry::PinContact &c) {
+      select_contacts([&](const geometry::PinContact &c) {
         return can_carry(model.geometry(), psi, c, load_sign);
       });
       condensed.matrix = path.at(psi, keys);
@@ -161,14 +164,39 @@ namespace cycloid
 
 
     template <int dim>
+    ReducedModel<dim>::ReducedModel(const ReducedSettings &sample,
+                                    const ReducedModel    &nominal)
+      : settings(sample)
+      , psi(nominal.psi)
+      , psi_mesh(nominal.psi_mesh)
+      , model(sample.stage.model_settings())
+      , pins(model.unloaded_pins(psi))
+      , n_dofs(nominal.n_dofs)
+    {
+      std::map<ContactKey, unsigned int> index;
+      for (unsigned int i = 0; i < nominal.keys.size(); ++i)
+        index[nominal.keys[i]] = i;
+      select_contacts([&](const geometry::PinContact &c) {
+        return index.count({{c.disc, c.pin, 0}}) > 0;
+      });
+      condensed        = nominal.condensed;
+      condensed.matrix = dealii::FullMatrix<double>(keys.size(), keys.size());
+      for (unsigned int i = 0; i < keys.size(); ++i)
+        for (unsigned int j = 0; j < keys.size(); ++j)
+          condensed.matrix(i, j) =
+            nominal.condensed.matrix(index.at(keys[i]), index.at(keys[j]));
+      build_solver();
+    }
+
+
+
+    template <int dim>
     void
     ReducedModel<dim>::select_contacts(
-      const CoarseModel<dim>                                  &coarse,
       const std::function<bool(const geometry::PinContact &)> &take)
     {
-      const geometry::CycloidGeometry &geo      = model.geometry();
-      const double                     psi_mesh = coarse.crank_angle();
-      const auto                      &g        = settings.stage.geometry;
+      const geometry::CycloidGeometry &geo = model.geometry();
+      const auto                      &g   = settings.stage.geometry;
       const unsigned int slices = dim == 3 ? settings.reduced.axial_slices : 1;
       for (unsigned int k = 0; k < pins.size(); ++k)
         {

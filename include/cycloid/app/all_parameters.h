@@ -17,6 +17,7 @@
 #include <cycloid/parameters/scene.h>
 #include <cycloid/profile/profile_parameters.h>
 #include <cycloid/reduced/reduced_parameters.h>
+#include <cycloid/tolerance/tolerance_parameters.h>
 
 #include <map>
 #include <set>
@@ -51,6 +52,8 @@ namespace cycloid
       profile::ProfileParameters profile;
       /** Subsection Reduced (Run = reduced). */
       reduced::ReducedParameters reduced;
+      /** Subsection Tolerance study (Run = tolerance). */
+      tolerance::ToleranceParameters tolerance;
       /** Subsection Deviations: read into `geometry` by read(). */
       geometry::DeviationsParameters deviations;
 

@@ -90,6 +90,14 @@ namespace cycloid
       std::vector<PinDeviation> pin_deviations;
       /** The discs' manufacturing deviations (empty: as drawn). */
       std::vector<DiscDeviation> disc_deviations;
+      /** Check the drawing (profile, undercut, clearance at rest, housing,
+       * holes) when a CycloidGeometry is built. A tolerance study's
+       * samples turn it off: their drawing is the mean stage's, checked
+       * once, the deviations move it by a few um, and a sample that cannot
+       * be assembled shows as a negative clearance of its pins at rest
+       * (analytic::StageModel::unloaded_pins() throws); the check would
+       * cost ten times the sample's own work. */
+      bool check_drawing = true;
 
       /** Declare the entries of subsection `Geometry`. */
       static void

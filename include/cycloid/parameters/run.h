@@ -24,6 +24,7 @@ namespace cycloid
         phase_sweep,
         transient,
         reduced,
+        tolerance,
         profile
       };
 
@@ -56,7 +57,8 @@ namespace cycloid
       bool write_solution = true;
 
       /** Whether the run mode is an FE run (mesh, quasi-static,
-       * phase-sweep, transient, and reduced, whose coarse model is one). */
+       * phase-sweep, transient, and reduced and tolerance, whose coarse
+       * model is one). */
       bool
       fe() const
       {

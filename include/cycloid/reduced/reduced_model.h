@@ -103,6 +103,19 @@ namespace cycloid
                    const int                  load_sign,
                    const CompliancePath<dim> &path);
 
+      /**
+       * The stage of @p sample, the stage of @p nominal with other
+       * manufacturing deviations (a tolerance study's sample), at
+       * @p nominal's crank angle on the compliance @p nominal condensed: the
+       * gaps, arms, contact points and near fields are the sample's own,
+       * the compliance between two contacts the nominal stage's. A
+       * deviation of a few um changes the gaps, not the bodies
+       * (doc/tolerance.md measures what the reuse costs). The contacts are
+       * @p nominal's pins: one the nominal stage could not load is left
+       * out. No solve, no communication.
+       */
+      ReducedModel(const ReducedSettings &sample, const ReducedModel &nominal);
+
       /** The load state for output torque @p torque [N m], the first
        * active set from rotation @p beta_guess [rad] (0: the analytical
        * model's). */
@@ -152,10 +165,10 @@ namespace cycloid
 
     private:
       /** The contacts of the pins for which @p take holds (per disc, pin
-       * and slice), their disc side placed where @p coarse has the disc. */
+       * and slice), their disc side placed where the coarse model has the
+       * disc (its crank angle psi_mesh). */
       void
       select_contacts(
-        const CoarseModel<dim>                                  &coarse,
         const std::function<bool(const geometry::PinContact &)> &take);
       /** Gap and arm of contact @p c's pin against the disc turned
        * rigidly by beta (ContactPair::rigid_gap), from the exact profile. */
@@ -165,8 +178,10 @@ namespace cycloid
       void
       build_solver();
 
-      const ReducedSettings          settings;
-      const double                   psi;
+      const ReducedSettings settings;
+      const double          psi;
+      /** The crank angle the coarse model was meshed at [rad]. */
+      const double                   psi_mesh;
       const analytic::StageModel     model;
       std::vector<analytic::PinLoad> pins;
       std::vector<ContactPoint>      points;
