@@ -179,12 +179,14 @@ namespace cycloid
       select_contacts([&](const geometry::PinContact &c) {
         return index.count({{c.disc, c.pin, 0}}) > 0;
       });
+      std::vector<unsigned int> at(keys.size());
+      for (unsigned int i = 0; i < keys.size(); ++i)
+        at[i] = index.at(keys[i]);
       condensed        = nominal.condensed;
       condensed.matrix = dealii::FullMatrix<double>(keys.size(), keys.size());
       for (unsigned int i = 0; i < keys.size(); ++i)
         for (unsigned int j = 0; j < keys.size(); ++j)
-          condensed.matrix(i, j) =
-            nominal.condensed.matrix(index.at(keys[i]), index.at(keys[j]));
+          condensed.matrix(i, j) = nominal.condensed.matrix(at[i], at[j]);
       build_solver();
     }
 

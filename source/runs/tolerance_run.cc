@@ -503,13 +503,16 @@ namespace cycloid
           for (unsigned int s = 0; s < study.failures.size(); ++s)
             if (!study.failures[s].empty() && failed++ == 0)
               first = "sample " + std::to_string(s) + ": " + study.failures[s];
+          const unsigned int ranks =
+            dealii::Utilities::MPI::n_mpi_processes(comm);
           std::cout << "  " << study.figures.size() << " samples (the mean "
                     << "stage and " << p.n_samples << " drawn) in "
-                    << study.wall_s << " s, "
-                    << study.wall_s / study.figures.size() * 1e3
-                    << " ms per sample on each of "
-                    << dealii::Utilities::MPI::n_mpi_processes(comm)
-                    << " rank(s)" << std::endl;
+                    << study.wall_s << " s on " << ranks << " rank(s): "
+                    << study.wall_s * ranks / study.figures.size() * 1e3
+                    << " ms per sample and rank ("
+                    << study.wall_s / study.figures.size() /
+                         (angles.size() * torques.size()) * ranks * 1e3
+                    << " ms per state)" << std::endl;
           if (failed > 0)
             std::cout << "  WARNING: " << failed
                       << " sample(s) could not be assembled and are left out "
