@@ -212,6 +212,14 @@ def main():
     with open(args.prm) as f:
         text = f.read()
     run = "phase-sweep" if phases > 1 else "quasi-static"
+    # Deviation files are named relative to the run's file; the FE's file
+    # lives elsewhere, so it names them absolutely.
+    here = os.path.dirname(os.path.abspath(args.prm))
+    files = ["  set %s = %s" % (entry, os.path.join(here, get("Deviations", entry)))
+             for entry in ["Pin deviations file", "Disc deviations file"]
+             if get("Deviations", entry)]
+    if files:
+        text += "\n" + "\n".join(["subsection Deviations"] + files + ["end", ""])
     with open(fe_file, "w") as f:
         f.write(fe_prm(text, fe_out, run, dim, args.mesh))
     print("check_fe: the full FE model (%s, %dD, %s mesh) of the %d state(s) of %s; "

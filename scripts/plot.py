@@ -24,7 +24,14 @@ writes into OUTPUT_DIR/plots/, each figure only when its data exist:
                          and the largest shear stress, if pin_forces.csv
                          has those columns;
 * energy.png             the energy terms of a transient and its balance
-                         error (energy.csv).
+                         error (energy.csv);
+* tolerance_distributions.png  a tolerance study's CDFs of K_secant, the
+                         load sharing λ (with the seed's 0.7), the peak pin
+                         force and the rotation, one curve per torque, the
+                         nominal stage marked (samples.csv);
+* pin_force_spread.png   a tolerance study's spread of each pin's force: a
+                         box per pin (P5-P95, median, min-max whiskers) and
+                         the nominal stage's force (pin_force_summary.csv).
 
 It also writes plots/index.json: per figure its file, title, and per panel
 the title, axis labels and the curves drawn (label, number of points), read
@@ -48,7 +55,7 @@ from cycloid_tools import parameter_values, read_csv  # noqa: E402
 ARCSEC_PER_RAD = 180.0 * 3600.0 / math.pi
 ARCMIN_PER_RAD = 180.0 * 60.0 / math.pi
 KNOWN_FILES = ("stiffness.csv", "pin_forces.csv", "fluctuation.csv",
-               "energy.csv", "torsion_curve.csv", "rigidity.csv")
+               "energy.csv", "torsion_curve.csv", "rigidity.csv", "samples.csv")
 DISC_STYLE = [dict(color="tab:blue", marker="o"),
               dict(color="tab:orange", marker="s"),
               dict(color="tab:green", marker="^")]
@@ -130,6 +137,9 @@ class Run:
         self.energy = read_columns(os.path.join(directory, "energy.csv"))
         self.torsion = read_columns(os.path.join(directory, "torsion_curve.csv"))
         self.rigidity = read_columns(os.path.join(directory, "rigidity.csv"))
+        # A tolerance study: every sample's states, and each pin's spread.
+        self.samples = read_columns(os.path.join(directory, "samples.csv"))
+        self.pin_spread = read_columns(os.path.join(directory, "pin_force_summary.csv"))
         self.transient = self.energy is not None or self.prm.get("Run") == "transient"
         self.by_rotation = self._rotation_control()
         # A torque cycle passes each torque twice at a crank angle (loading
@@ -247,9 +257,16 @@ class Run:
                 parts.append(f"ψ = {fmt(cranks[0])}…{fmt(cranks[-1])}° ({len(cranks)} angles)")
         elif self.rigidity is not None:
             parts.append(f"rated T = {fmt(self.rigidity['rated_torque_Nm'][0])} N·m")
+        elif self.samples is not None:
+            n = len(distinct(self.samples["sample"])) - 1
+            parts.append(f"{n} samples, T = "
+                         + ", ".join(fmt(t) for t in distinct(self.samples["torque_Nm"]))
+                         + " N·m")
         return parts
 
     def _guessed_mode(self):
+        if self.samples is not None:
+            return "tolerance"
         if self.transient:
             return "transient"
         if self.stiffness is not None and np.all(self.stiffness["dofs"] == 0):
@@ -659,6 +676,90 @@ def _dimension(ax, x0, x1, y, feet, color, label):
     ax.plot([x0, x1], [y, y], color=color, lw=1.2, label=label)
 
 
+# --- tolerance studies ------------------------------------------------------
+
+def _cdf(ax, values, label, style):
+    x = np.sort(values[np.isfinite(values)])
+    if x.size:
+        ax.step(x, np.arange(1, x.size + 1) / x.size, where="post", label=label, **style)
+
+
+def tolerance_distributions(run):
+    """Empirical CDFs over the samples (sample 0, the nominal stage, left
+    out and marked by a dashed line) at the first crank angle, one curve
+    per torque."""
+    s = run.samples
+    if s is None:
+        return None
+    crank = s["crank_deg"][0]
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7.5), layout="constrained")
+    panels = [("K_secant_Nm_per_rad", "K_secant", "K_secant [N·m/arcmin]", 1 / ARCMIN_PER_RAD),
+              ("load_sharing", "load sharing λ", "λ = K_secant / nominal K_secant [-]", 1.0),
+              ("max_pin_force_N", "peak pin force", "peak pin force [N]", 1.0),
+              ("rotation_rad", "output rotation", "output rotation [arcmin]", ARCMIN_PER_RAD)]
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for ax, (key, name, label, scale) in zip(axes.flat, panels):
+        for i, t in enumerate(distinct(s["torque_Nm"])):
+            at = (s["torque_Nm"] == t) & np.array([same(c, crank) for c in s["crank_deg"]])
+            nominal = at & (s["sample"] == 0)
+            drawn = at & (s["sample"] != 0)
+            if t == 0 or not np.any(nominal):
+                continue
+            k0 = s["K_secant_Nm_per_rad"][nominal][0]
+            values = (s["K_secant_Nm_per_rad"][drawn] / k0 if key == "load_sharing"
+                      else s[key][drawn] * scale)
+            ref = 1.0 if key == "load_sharing" else s[key][nominal][0] * scale
+            style = dict(color=colors[i % len(colors)])
+            p5, p95 = np.percentile(values, [5, 95])
+            _cdf(ax, values, f"T = {fmt(t)} N·m: P5 {fmt(p5)}, P95 {fmt(p95)}", style)
+            ax.axvline(ref, ls="--", lw=1, **style)
+        if key == "load_sharing":
+            ax.axvline(0.7, color="k", ls=":", lw=1.2, label="the seed's λ = 0.7")
+        ax.set_xlabel(label)
+        ax.set_ylabel("fraction of samples ≤ x")
+        ax.set_title(name + " (dashed: nominal stage)")
+        ax.legend(loc="lower right")
+    n = len(distinct(s["sample"])) - 1
+    fig.suptitle(run.title(f"Tolerance study: {n} samples, crank angle {fmt(crank)}°"))
+    return fig
+
+
+def pin_force_spread(run):
+    """A box per pin at the largest torque and first crank angle: P5 to P95,
+    the median, whiskers to the smallest and largest sample; the nominal
+    stage's force as a dot."""
+    p = run.pin_spread
+    if p is None:
+        return None
+    crank = p["crank_deg"][0]
+    torque = max(p["torque_Nm"])
+    sel = (p["torque_Nm"] == torque) & np.array([same(c, crank) for c in p["crank_deg"]])
+    fig, ax = plt.subplots(figsize=(10, 5), layout="constrained")
+    for d in distinct(p["disc"][sel]):
+        on = sel & (p["disc"] == d)
+        order = np.argsort(p["pin"][on])
+        pin = p["pin"][on][order]
+        offset = 0.2 * (d - 0.5) if len(distinct(p["disc"][sel])) > 1 else 0.0
+        stats = [{"med": m, "q1": a, "q3": b, "whislo": lo, "whishi": hi, "fliers": []}
+                 for m, a, b, lo, hi in zip(p["p50"][on][order], p["p05"][on][order],
+                                            p["p95"][on][order], p["min"][on][order],
+                                            p["max"][on][order])]
+        style = DISC_STYLE[int(d) % len(DISC_STYLE)]
+        ax.bxp(stats, positions=pin + offset, widths=0.35, showfliers=False,
+               boxprops=dict(color=style["color"]), medianprops=dict(color=style["color"]),
+               whiskerprops=dict(color=style["color"]), capprops=dict(color=style["color"]),
+               manage_ticks=False)
+        ax.plot(pin + offset, p["nominal"][on][order], ls="", marker=style["marker"], ms=4,
+                color="k", label=f"disc {int(d)}: nominal stage")
+    ax.set_xlabel("pin j")
+    ax.set_ylabel("normal force Fn [N]")
+    ax.set_title(f"Fn per pin over the samples, T = {fmt(torque)} N·m, ψ = {fmt(crank)}° "
+                 "(box P5-P95, line median, whiskers min-max)")
+    _legend_outside(ax)
+    fig.suptitle(run.title("Spread of the pin forces"))
+    return fig
+
+
 # --- index and main ------------------------------------------------------------
 
 def describe(fig, filename):
@@ -697,7 +798,9 @@ FIGURES = [("pin_forces_polar.png", pin_forces_polar),
            ("torsion_curve.png", torsion_curve),
            ("transmission_error.png", transmission_error),
            ("contact_pressure.png", contact_pressure),
-           ("energy.png", energy)]
+           ("energy.png", energy),
+           ("tolerance_distributions.png", tolerance_distributions),
+           ("pin_force_spread.png", pin_force_spread)]
 
 
 def main(argv):

@@ -11,7 +11,11 @@ Checks:
   numpy's percentiles, min, max, standard error std / sqrt(n), load_sharing
   = K_secant over sample 0's) to 1e-9;
 - the sensitivity's shares of each quantity sum to 1, and the samples vary;
-- zero bands: every sample is the nominal stage (load_sharing 1, std 0).
+- zero bands: every sample is the nominal stage (load_sharing 1, std 0);
+- a torque cycle at two crank angles: each sample's backlash (the spread of
+  its rotations at zero torque) and transmission error peak-to-peak (the
+  spread of its rotation over the crank angles, per torque) recomputed
+  from samples.csv give the summary's rows.
 """
 import filecmp
 import math
@@ -139,7 +143,64 @@ def main():
         # The mean of equal numbers may differ from them in the last bit.
         check(float(s["std"]) <= 1e-12 * abs(float(s["mean"])),
               "zero bands: %s std %s" % (s["quantity"], s["std"]))
+    check_cycle(exe, work, text)
     return verdict()
+
+
+def check_cycle(exe, work, text):
+    cycle = text + """
+subsection Loading
+  set Torque cycle       = true
+  set Rated torque       = 1000
+  set Torque cycle steps = 4
+  set Crank angle        = 0
+  set Number of phases   = 2
+end
+subsection Tolerance study
+  set Number of samples = 12
+  set Sensitivity       = false
+end
+"""
+    out = run(exe, work, "cycle", cycle, 1)
+    samples = rows(os.path.join(out, "samples.csv"))
+    summary = rows(os.path.join(out, "tolerance_summary.csv"))
+    ids = sorted({int(r["sample"]) for r in samples})
+    cranks = sorted({float(r["crank_deg"]) for r in samples})
+    torques = sorted({float(r["torque_Nm"]) for r in samples})
+
+    def of(sample, pred):
+        return [float(r["rotation_rad"]) for r in samples if int(r["sample"]) == sample and pred(r)]
+
+    arcmin, arcsec = 180 * 60 / math.pi, 180 * 3600 / math.pi
+    for crank in cranks:
+        width = {s: arcmin * (max(v) - min(v)) for s in ids for v in [of(
+            s, lambda r: float(r["crank_deg"]) == crank and float(r["torque_Nm"]) == 0)]}
+        row = [x for x in summary if x["quantity"] == "backlash_arcmin"
+               and close(x["crank_deg"], crank, 1e-9)]
+        if check(len(row) == 1, "cycle: no backlash row at %g deg" % crank):
+            drawn = np.array([width[s] for s in ids if s != 0])
+            check(close(row[0]["nominal"], width[0], 1e-8), "cycle: backlash nominal %s against %r"
+                  % (row[0]["nominal"], width[0]))
+            check(close(row[0]["mean"], drawn.mean(), 1e-8), "cycle: backlash mean %s against %r"
+                  % (row[0]["mean"], drawn.mean()))
+        for q in ["lost_motion_arcmin", "torsional_rigidity_Nm_per_arcmin"]:
+            check(sum(x["quantity"] == q and close(x["crank_deg"], crank, 1e-9) for x in summary) == 1,
+                  "cycle: no %s row at %g deg" % (q, crank))
+    def first(sample, crank, torque):
+        # The cycle's first state of that torque (zero torque is passed from
+        # both sides, the two ends of the backlash).
+        at = [r for r in samples if int(r["sample"]) == sample and float(r["crank_deg"]) == crank
+              and float(r["torque_Nm"]) == torque]
+        return float(min(at, key=lambda r: int(r["step"]))["rotation_rad"])
+
+    for torque in torques:
+        pp = np.array([arcsec * (max(v) - min(v)) for s in ids if s != 0
+                       for v in [[first(s, c, torque) for c in cranks]]])
+        row = [x for x in summary if x["quantity"] == "transmission_error_pp_arcsec"
+               and close(x["torque_Nm"], torque, 1e-9)]
+        if check(len(row) == 1, "cycle: %d TE rows at %g N m" % (len(row), torque)):
+            check(close(row[0]["max"], pp.max(), 1e-8), "cycle: TE p-p max %s against %r"
+                  % (row[0]["max"], pp.max()))
 
 
 if __name__ == "__main__":

@@ -4,6 +4,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <cycloid/analytic/stage_model.h>
+#include <cycloid/postprocess/catalogue.h>
 #include <cycloid/postprocess/columns.h>
 #include <cycloid/results/cost_figures.h>
 #include <cycloid/runs/tolerance_run.h>
@@ -17,6 +18,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <set>
 #include <sstream>
 
 #include <boost/serialization/string.hpp>
@@ -210,6 +212,68 @@ namespace cycloid
 
 
     template <int dim>
+    std::vector<typename ToleranceRun<dim>::OverStates>
+    ToleranceRun<dim>::over_states() const
+    {
+      std::vector<OverStates> list;
+      const double            nan = std::numeric_limits<double>::quiet_NaN();
+      if (settings.loading.torque_cycle)
+        for (const double psi : angles)
+          for (const char *name : {"torsional_rigidity_Nm_per_arcmin",
+                                   "lost_motion_arcmin",
+                                   "backlash_arcmin"})
+            list.push_back(
+              {name, psi * u::deg_per_rad, settings.loading.rated_torque});
+      if (angles.size() > 1)
+        for (const double t : torques)
+          list.push_back({"transmission_error_pp_arcsec", nan, t});
+      return list;
+    }
+
+
+
+    template <int dim>
+    std::vector<double>
+    ToleranceRun<dim>::cycle_figures(
+      const std::vector<results::StageState> &states) const
+    {
+      std::vector<double> f;
+      const unsigned int  n_t = torques.size();
+      if (settings.loading.torque_cycle)
+        for (unsigned int k = 0; k < angles.size(); ++k)
+          {
+            std::vector<postprocess::TorsionPoint> curve;
+            for (unsigned int t = 0; t < n_t; ++t)
+              {
+                const results::StageState &s = states[k * n_t + t];
+                curve.push_back({s.crank, torques[t], s.rotation, s.takeup});
+              }
+            const auto c = postprocess::catalogue_figures(
+              curve,
+              settings.loading.rated_torque,
+              parameters::LoadingParameters::lost_motion_torque);
+            f.insert(f.end(),
+                     {c.rigidity_Nm_per_arcmin,
+                      c.lost_motion_arcmin,
+                      c.backlash_arcmin});
+          }
+      if (angles.size() > 1)
+        for (unsigned int t = 0; t < n_t; ++t)
+          {
+            double lo = 1e300, hi = -1e300;
+            for (unsigned int k = 0; k < angles.size(); ++k)
+              {
+                lo = std::min(lo, states[k * n_t + t].rotation);
+                hi = std::max(hi, states[k * n_t + t].rotation);
+              }
+            f.push_back((hi - lo) * u::arcsec_per_rad);
+          }
+      return f;
+    }
+
+
+
+    template <int dim>
     std::vector<double>
     ToleranceRun<dim>::figures_of(
       const std::vector<results::StageState> &states) const
@@ -228,6 +292,11 @@ namespace cycloid
             if (p.disc < n_discs && p.pin < n_pins)
               fn[p.disc * n_pins + p.pin] = p.fn;
           f.insert(f.end(), fn.begin(), fn.end());
+        }
+      if (!states.empty())
+        {
+          const std::vector<double> over = cycle_figures(states);
+          f.insert(f.end(), over.begin(), over.end());
         }
       return f;
     }
@@ -340,11 +409,16 @@ namespace cycloid
       std::ofstream pins = csv_file(dir + "/pin_force_summary.csv");
       pins << "crank_deg,torque_Nm,disc,pin,nominal,mean,std,p05,p50,p95,min,"
               "max,standard_error\n";
+      // A torque cycle passes a torque twice at a crank angle (loading and
+      // unloading: the same state without friction): one row each.
+      std::set<std::pair<double, double>> written;
       for (unsigned int k = 0; k < n_states; ++k)
         {
           const double crank  = angles[k / torques.size()] * u::deg_per_rad;
           const double torque = torques[k % torques.size()];
-          const auto   row    = [&](const std::string        &name,
+          if (!written.insert({crank, torque}).second)
+            continue;
+          const auto row = [&](const std::string        &name,
                                const tolerance::Summary &s) {
             out << name << ',' << crank << ',' << torque + 0. << ',';
             write_summary(out, s);
@@ -370,6 +444,25 @@ namespace cycloid
               write_summary(pins, s);
               pins << ',' << s.standard_error << '\n';
             }
+        }
+      // The figures over states (catalogue figures, TE peak-to-peak).
+      const std::vector<OverStates> over = over_states();
+      std::set<double>              te_written; // the TE per torque, once each
+      for (unsigned int i = 0; i < over.size(); ++i)
+        {
+          if (std::isnan(over[i].crank) &&
+              !te_written.insert(over[i].torque).second)
+            continue;
+          std::vector<double> v;
+          for (unsigned int s = 1; s < n; ++s)
+            if (!study.figures[s].empty())
+              v.push_back(study.figures[s][n_states * stride + i]);
+          const auto sum =
+            tolerance::summarise(nominal[n_states * stride + i], v);
+          out << over[i].name << ',' << over[i].crank << ','
+              << over[i].torque + 0. << ',';
+          write_summary(out, sum);
+          out << ',' << sum.standard_error << '\n';
         }
       // The extreme samples: the lowest and highest stiffness (K_secant
       // over the mean stage's, the worst state of each sample) and peak pin

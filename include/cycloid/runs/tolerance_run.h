@@ -66,8 +66,9 @@ namespace cycloid
       struct Study
       {
         /** Per sample: per state K_secant, K_tangent, rotation, max pin
-         * force, pins in contact, then Fn of every (disc, pin); empty if
-         * the sample could not be solved. */
+         * force, pins in contact, then Fn of every (disc, pin); then the
+         * sample's figures over states (cycle_figures()); empty if the
+         * sample could not be solved. */
         std::vector<std::vector<double>> figures;
         /** Per sample: its samples.csv rows (empty if not kept). */
         std::vector<std::string> rows;
@@ -79,6 +80,30 @@ namespace cycloid
 
       /** Figures per state in Study::figures before the pin forces. */
       static constexpr unsigned int n_figures = 5;
+
+      /**
+       * The figures of a sample that several of its states make, with
+       * the name, crank angle [deg] and torque [N m] of their summary
+       * rows: with `Loading/Torque cycle`, per crank angle the catalogue's
+       * torsional rigidity, lost motion and backlash
+       * (postprocess::catalogue_figures()); over several crank angles,
+       * per torque the transmission error's peak-to-peak (the spread of
+       * the output rotation over the angles; its crank angle NaN).
+       */
+      struct OverStates
+      {
+        std::string name;   ///< Its quantity name in the summary.
+        double      crank;  ///< Crank angle [deg] (NaN: over all).
+        double      torque; ///< Torque [N m] (the rated one for a cycle).
+      };
+
+      /** The figures over states of this study, in Study::figures' order. */
+      std::vector<OverStates>
+      over_states() const;
+
+      /** The values of over_states() for a sample's @p states. */
+      std::vector<double>
+      cycle_figures(const std::vector<results::StageState> &states) const;
 
       /** The side(s) the torques load: +1, -1, or 0 for both. */
       int
