@@ -117,6 +117,34 @@ namespace cycloid
 
 
     template <int dim>
+    void
+    ToleranceRun<dim>::add_torques(
+      results::Clock::time_point                                start,
+      const std::function<analytic::LoadState(double, double)> &solve,
+      const std::function<analytic::LoadState(int)>            &limit,
+      const std::function<results::StageState(const analytic::LoadState &)>
+                                       &state_of,
+      std::vector<results::StageState> &states) const
+    {
+      double beta = 0;
+      for (unsigned int t = 0; t < torques.size(); ++t)
+        {
+          const analytic::LoadState load =
+            settings.loading.torque_cycle && torques[t] == 0 ?
+              limit(parameters::LoadingParameters::zero_side(torques, t)) :
+              solve(torques[t], beta);
+          beta                      = load.rotation;
+          results::StageState state = state_of(load);
+          state.step                = states.size();
+          state.wall_s              = seconds_since(start);
+          start                     = Clock::now();
+          states.push_back(state);
+        }
+    }
+
+
+
+    template <int dim>
     typename ToleranceRun<dim>::SampleSolver
     ToleranceRun<dim>::reduced_solver()
     {
@@ -149,23 +177,18 @@ namespace cycloid
         std::vector<results::StageState> states;
         for (unsigned int k = 0; k < angles.size(); ++k)
           {
-            auto                             start = Clock::now();
+            const auto                       start = Clock::now();
             const reduced::ReducedModel<dim> model(s, *nominal[k]);
-            double                           beta = 0;
-            for (unsigned int t = 0; t < torques.size(); ++t)
-              {
-                const analytic::LoadState load =
-                  settings.loading.torque_cycle && torques[t] == 0 ?
-                    model.zero_torque_limit(
-                      parameters::LoadingParameters::zero_side(torques, t)) :
-                    model.solve(torques[t], beta);
-                beta                      = load.rotation;
-                results::StageState state = model.stage_state(load);
-                state.step                = states.size();
-                state.wall_s              = seconds_since(start);
-                start                     = Clock::now();
-                states.push_back(state);
-              }
+            add_torques(
+              start,
+              [&](const double torque, const double beta) {
+                return model.solve(torque, beta);
+              },
+              [&](const int side) { return model.zero_torque_limit(side); },
+              [&](const analytic::LoadState &load) {
+                return model.stage_state(load);
+              },
+              states);
           }
         return states;
       };
@@ -183,27 +206,23 @@ namespace cycloid
         m.geometry.disc_deviations = d.discs;
         m.geometry.check_drawing   = false;
         std::vector<results::StageState> states;
-        auto                             start = Clock::now();
+        const auto                       start = Clock::now();
         const analytic::StageModel       model(m);
         for (const double psi : angles)
           {
             const auto pins = model.unloaded_pins(psi);
-            double     beta = 0;
-            for (unsigned int t = 0; t < torques.size(); ++t)
-              {
-                const analytic::LoadState load =
-                  settings.loading.torque_cycle && torques[t] == 0 ?
-                    model.zero_torque_limit(
-                      pins,
-                      parameters::LoadingParameters::zero_side(torques, t)) :
-                    model.solve(pins, torques[t], beta);
-                beta                      = load.rotation;
-                results::StageState state = model.stage_state(load, psi);
-                state.step                = states.size();
-                state.wall_s              = seconds_since(start);
-                start                     = Clock::now();
-                states.push_back(state);
-              }
+            add_torques(
+              states.empty() ? start : Clock::now(),
+              [&](const double torque, const double beta) {
+                return model.solve(pins, torque, beta);
+              },
+              [&](const int side) {
+                return model.zero_torque_limit(pins, side);
+              },
+              [&](const analytic::LoadState &load) {
+                return model.stage_state(load, psi);
+              },
+              states);
           }
         return states;
       };
@@ -380,95 +399,115 @@ namespace cycloid
 
 
     template <int dim>
+    std::vector<double>
+    ToleranceRun<dim>::drawn(const Study &study, const unsigned int i)
+    {
+      std::vector<double> v;
+      for (unsigned int s = 1; s < study.figures.size(); ++s)
+        if (!study.figures[s].empty())
+          v.push_back(study.figures[s][i]);
+      return v;
+    }
+
+
+
+    template <int dim>
     void
     ToleranceRun<dim>::write_study(const Study &study) const
     {
-      const std::string  dir      = settings.model.stage.output_directory;
-      const unsigned int n        = study.figures.size();
-      const unsigned int n_states = angles.size() * torques.size();
-      const unsigned int stride   = n_figures + n_discs * n_pins;
-      {
-        std::ofstream out = csv_file(dir + "/samples.csv");
-        out << "sample,"
-            << postprocess::header(postprocess::stiffness_columns()) << '\n';
-        for (const std::string &rows : study.rows)
-          out << rows;
-      }
-      const std::vector<double> &nominal = study.figures[0];
-      // The figure @p f of state @p k of every solved sample but the mean.
-      const auto values = [&](const unsigned int k, const unsigned int f) {
-        std::vector<double> v;
-        for (unsigned int s = 1; s < n; ++s)
-          if (!study.figures[s].empty())
-            v.push_back(study.figures[s][k * stride + f]);
-        return v;
-      };
-      std::ofstream out = csv_file(dir + "/tolerance_summary.csv");
+      const std::string dir = settings.model.stage.output_directory;
+      std::ofstream     out = csv_file(dir + "/samples.csv");
+      out << "sample," << postprocess::header(postprocess::stiffness_columns())
+          << '\n';
+      for (const std::string &rows : study.rows)
+        out << rows;
+      write_summaries(study);
+      write_extremes(study);
+    }
+
+
+
+    template <int dim>
+    void
+    ToleranceRun<dim>::write_summaries(const Study &study) const
+    {
+      const std::string          dir = settings.model.stage.output_directory;
+      const unsigned int         n_states = angles.size() * torques.size();
+      const unsigned int         stride   = n_figures + n_discs * n_pins;
+      const std::vector<double> &nominal  = study.figures[0];
+      std::ofstream              out = csv_file(dir + "/tolerance_summary.csv");
       out << "quantity,crank_deg,torque_Nm,nominal,mean,std,p05,p50,p95,min,"
              "max,standard_error\n";
       std::ofstream pins = csv_file(dir + "/pin_force_summary.csv");
       pins << "crank_deg,torque_Nm,disc,pin,nominal,mean,std,p05,p50,p95,min,"
               "max,standard_error\n";
+      const auto row = [](std::ostream &o, const tolerance::Summary &s) {
+        write_summary(o, s);
+        o << ',' << s.standard_error << '\n';
+      };
       // A torque cycle passes a torque twice at a crank angle (loading and
       // unloading: the same state without friction): one row each.
       std::set<std::pair<double, double>> written;
       for (unsigned int k = 0; k < n_states; ++k)
         {
           const double crank  = angles[k / torques.size()] * u::deg_per_rad;
-          const double torque = torques[k % torques.size()];
+          const double torque = torques[k % torques.size()] + 0.;
           if (!written.insert({crank, torque}).second)
             continue;
-          const auto row = [&](const std::string        &name,
-                               const tolerance::Summary &s) {
-            out << name << ',' << crank << ',' << torque + 0. << ',';
-            write_summary(out, s);
-            out << ',' << s.standard_error << '\n';
-          };
           for (unsigned int f = 0; f < n_figures; ++f)
-            row(figure_names[f],
-                tolerance::summarise(nominal[k * stride + f], values(k, f)));
+            {
+              out << figure_names[f] << ',' << crank << ',' << torque << ',';
+              row(out,
+                  tolerance::summarise(nominal[k * stride + f],
+                                       drawn(study, k * stride + f)));
+            }
           // The seed's lambda, computed: K_secant over the mean stage's.
-          std::vector<double> lambda = values(k, 0);
+          std::vector<double> lambda = drawn(study, k * stride);
           for (double &x : lambda)
             x /= nominal[k * stride];
-          row("load_sharing", tolerance::summarise(1., lambda));
+          out << "load_sharing," << crank << ',' << torque << ',';
+          row(out, tolerance::summarise(1., lambda));
           for (unsigned int p = 0; p < n_discs * n_pins; ++p)
             {
-              const auto s =
-                tolerance::summarise(nominal[k * stride + n_figures + p],
-                                     values(k, n_figures + p));
-              if (!(s.max > 0) && !(s.nominal > 0))
-                continue;
-              pins << crank << ',' << torque + 0. << ',' << p / n_pins << ','
-                   << p % n_pins << ',';
-              write_summary(pins, s);
-              pins << ',' << s.standard_error << '\n';
+              const unsigned int i = k * stride + n_figures + p;
+              const auto s = tolerance::summarise(nominal[i], drawn(study, i));
+              if (s.max > 0 || s.nominal > 0)
+                {
+                  pins << crank << ',' << torque << ',' << p / n_pins << ','
+                       << p % n_pins << ',';
+                  row(pins, s);
+                }
             }
         }
       // The figures over states (catalogue figures, TE peak-to-peak).
       const std::vector<OverStates> over = over_states();
       std::set<double>              te_written; // the TE per torque, once each
       for (unsigned int i = 0; i < over.size(); ++i)
-        {
-          if (std::isnan(over[i].crank) &&
-              !te_written.insert(over[i].torque).second)
-            continue;
-          std::vector<double> v;
-          for (unsigned int s = 1; s < n; ++s)
-            if (!study.figures[s].empty())
-              v.push_back(study.figures[s][n_states * stride + i]);
-          const auto sum =
-            tolerance::summarise(nominal[n_states * stride + i], v);
-          out << over[i].name << ',' << over[i].crank << ','
-              << over[i].torque + 0. << ',';
-          write_summary(out, sum);
-          out << ',' << sum.standard_error << '\n';
-        }
-      // The extreme samples: the lowest and highest stiffness (K_secant
-      // over the mean stage's, the worst state of each sample) and peak pin
-      // force, as deviation files for any model.
-      const std::string extremes = dir + "/extreme-samples";
+        if (!std::isnan(over[i].crank) ||
+            te_written.insert(over[i].torque).second)
+          {
+            const unsigned int at = n_states * stride + i;
+            out << over[i].name << ',' << over[i].crank << ','
+                << over[i].torque + 0. << ',';
+            row(out, tolerance::summarise(nominal[at], drawn(study, at)));
+          }
+    }
+
+
+
+    template <int dim>
+    void
+    ToleranceRun<dim>::write_extremes(const Study &study) const
+    {
+      // The lowest and highest stiffness (K_secant over the mean stage's,
+      // the worst state of each sample) and peak pin force, as deviation
+      // files for any model.
+      const std::string extremes =
+        settings.model.stage.output_directory + "/extreme-samples";
       std::filesystem::create_directories(extremes);
+      const unsigned int         n_states = angles.size() * torques.size();
+      const unsigned int         stride   = n_figures + n_discs * n_pins;
+      const std::vector<double> &nominal  = study.figures[0];
       struct Extreme
       {
         const char  *name;
@@ -484,15 +523,13 @@ namespace cycloid
         {
           unsigned int best = 0, best_k = 0;
           double       best_ratio = x.lowest ? 1e300 : -1e300;
-          for (unsigned int s = 1; s < n; ++s)
+          for (unsigned int s = 1; s < study.figures.size(); ++s)
             for (unsigned int k = 0; k < n_states && !study.figures[s].empty();
                  ++k)
               {
                 const double ref = nominal[k * stride + x.figure];
-                if (!(ref > 0))
-                  continue;
                 const double r = study.figures[s][k * stride + x.figure] / ref;
-                if (x.lowest ? r < best_ratio : r > best_ratio)
+                if (ref > 0 && (x.lowest ? r < best_ratio : r > best_ratio))
                   best_ratio = r, best = s, best_k = k;
               }
           if (best == 0)
@@ -522,19 +559,21 @@ namespace cycloid
       // The standard deviation of figure @p f of state @p k in @p s.
       const auto spread =
         [&](const Study &s, const unsigned int k, const unsigned int f) {
-          std::vector<double> v;
-          for (unsigned int i = 1; i < s.figures.size(); ++i)
-            if (!s.figures[i].empty())
-              v.push_back(s.figures[i][k * stride + f]);
-          return tolerance::summarise(0., v).std;
+          return tolerance::summarise(0., drawn(s, k * stride + f)).std;
         };
       std::ofstream out = csv_file(settings.model.stage.output_directory +
                                    "/tolerance_sensitivity.csv");
       out << "quantity,crank_deg,torque_Nm,tolerance,band,std,share,"
              "sum_of_shares_over_total\n";
+      std::set<std::pair<double, double>> written; // a cycle's repeats
       for (unsigned int k = 0; k < n_states; ++k)
         for (const unsigned int f : {0u, 2u, 3u})
           {
+            if (f == 0 && !written
+                             .insert({angles[k / torques.size()],
+                                      torques[k % torques.size()]})
+                             .second)
+              break;
             const double        total = std::pow(spread(study, k, f), 2);
             double              sum   = 0;
             std::vector<double> var;
@@ -559,29 +598,84 @@ namespace cycloid
 
     template <int dim>
     void
+    ToleranceRun<dim>::announce() const
+    {
+      const auto &p = settings.study;
+      std::cout << "cycloid-contact: tolerance study, " << p.n_samples
+                << " samples ("
+                << (p.distribution ==
+                        tolerance::ToleranceParameters::Distribution::normal ?
+                      "normal, band = +-3 sigma" :
+                      "uniform")
+                << ", seed " << p.seed << ") with the " << p.model_name()
+                << " model, " << stage::description(settings.model.stage)
+                << ", " << angles.size() << " crank angle(s) x "
+                << torques.size() << " torque(s); bands:";
+      for (unsigned int b = 0; b < tolerance::n_bands; ++b)
+        std::cout << (b ? ", " : " ") << tolerance::band_name(b) << " "
+                  << tolerance::band_width(p, b);
+      std::cout << std::endl;
+    }
+
+
+
+    template <int dim>
+    void
+    ToleranceRun<dim>::print_outcome(const Study &study) const
+    {
+      unsigned int failed = 0;
+      std::string  first;
+      for (unsigned int s = 0; s < study.failures.size(); ++s)
+        if (!study.failures[s].empty() && failed++ == 0)
+          first = "sample " + std::to_string(s) + ": " + study.failures[s];
+      const unsigned int ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+      const unsigned int n     = study.figures.size();
+      std::cout << "  " << n << " samples (the mean stage and "
+                << settings.study.n_samples << " drawn) in " << study.wall_s
+                << " s on " << ranks
+                << " rank(s): " << study.wall_s * ranks / n * 1e3
+                << " ms per sample and rank ("
+                << study.wall_s * ranks / n / (angles.size() * torques.size()) *
+                     1e3
+                << " ms per state)" << std::endl;
+      // The headline per state: lambda and the peak pin force.
+      const unsigned int stride = n_figures + n_discs * n_pins;
+      for (unsigned int k = 0; k < angles.size() * torques.size(); ++k)
+        if (torques[k % torques.size()] != 0 && n > 1)
+          {
+            std::vector<double> lambda = drawn(study, k * stride);
+            for (double &x : lambda)
+              x /= study.figures[0][k * stride];
+            const auto l = tolerance::summarise(1., lambda);
+            const auto f =
+              tolerance::summarise(study.figures[0][k * stride + 3],
+                                   drawn(study, k * stride + 3));
+            std::cout << "    crank "
+                      << angles[k / torques.size()] * u::deg_per_rad
+                      << " deg, T " << torques[k % torques.size()]
+                      << " N m: load sharing (K_secant / nominal) P5 " << l.p05
+                      << ", P50 " << l.p50 << ", P95 " << l.p95
+                      << "; peak pin force nominal " << f.nominal << " N, P95 "
+                      << f.p95 << " N" << std::endl;
+          }
+      if (failed > 0)
+        std::cout << "  WARNING: " << failed
+                  << " sample(s) could not be assembled and are left out of "
+                     "the statistics; first: "
+                  << first << std::endl;
+    }
+
+
+
+    template <int dim>
+    void
     ToleranceRun<dim>::run()
     {
       const bool  root  = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
       const auto  start = Clock::now();
       const auto &p     = settings.study;
       if (root)
-        {
-          std::cout
-            << "cycloid-contact: tolerance study, " << p.n_samples
-            << " samples ("
-            << (p.distribution ==
-                    tolerance::ToleranceParameters::Distribution::normal ?
-                  "normal, band = +-3 sigma" :
-                  "uniform")
-            << ", seed " << p.seed << ") with the " << p.model_name()
-            << " model, " << stage::description(settings.model.stage) << ", "
-            << angles.size() << " crank angle(s) x " << torques.size()
-            << " torque(s); bands:";
-          for (unsigned int b = 0; b < tolerance::n_bands; ++b)
-            std::cout << (b ? ", " : " ") << tolerance::band_name(b) << " "
-                      << tolerance::band_width(p, b);
-          std::cout << std::endl;
-        }
+        announce();
       const SampleSolver solve =
         p.model == tolerance::ToleranceParameters::Model::reduced ?
           reduced_solver() :
@@ -591,51 +685,30 @@ namespace cycloid
       if (root)
         {
           write_study(study);
-          unsigned int failed = 0;
-          std::string  first;
-          for (unsigned int s = 0; s < study.failures.size(); ++s)
-            if (!study.failures[s].empty() && failed++ == 0)
-              first = "sample " + std::to_string(s) + ": " + study.failures[s];
-          const unsigned int ranks =
-            dealii::Utilities::MPI::n_mpi_processes(comm);
-          std::cout << "  " << study.figures.size() << " samples (the mean "
-                    << "stage and " << p.n_samples << " drawn) in "
-                    << study.wall_s << " s on " << ranks << " rank(s): "
-                    << study.wall_s * ranks / study.figures.size() * 1e3
-                    << " ms per sample and rank ("
-                    << study.wall_s / study.figures.size() /
-                         (angles.size() * torques.size()) * ranks * 1e3
-                    << " ms per state)" << std::endl;
-          if (failed > 0)
-            std::cout << "  WARNING: " << failed
-                      << " sample(s) could not be assembled and are left out "
-                         "of the statistics; first: "
-                      << first << std::endl;
+          print_outcome(study);
         }
+      // The sensitivity: the study once per band with that band alone.
       std::vector<std::pair<unsigned int, Study>> alone;
       unsigned int                                n_on = 0;
       for (unsigned int b = 0; b < tolerance::n_bands; ++b)
         n_on += tolerance::band_width(p, b) > 0;
-      if (p.sensitivity && n_on >= 2)
-        for (unsigned int b = 0; b < tolerance::n_bands; ++b)
-          if (tolerance::band_width(p, b) > 0)
-            {
-              tolerance::BandMask on{};
-              on[b] = true;
-              alone.emplace_back(
-                b, solve_study(solve, on, tolerance::band_name(b), false));
-            }
+      for (unsigned int b = 0; b < tolerance::n_bands; ++b)
+        if (p.sensitivity && n_on >= 2 && tolerance::band_width(p, b) > 0)
+          {
+            tolerance::BandMask on{};
+            on[b] = true;
+            alone.emplace_back(
+              b, solve_study(solve, on, tolerance::band_name(b), false));
+          }
+      if (root && !alone.empty())
+        write_sensitivity(study, alone);
       if (root)
-        {
-          if (!alone.empty())
-            write_sensitivity(study, alone);
-          std::cout << "  results in " << settings.model.stage.output_directory
-                    << "/: samples.csv, tolerance_summary.csv, "
-                       "pin_force_summary.csv, "
-                    << (alone.empty() ? "" : "tolerance_sensitivity.csv, ")
-                    << "extreme-samples/; " << seconds_since(start)
-                    << " s in all" << std::endl;
-        }
+        std::cout << "  results in " << settings.model.stage.output_directory
+                  << "/: samples.csv, tolerance_summary.csv, "
+                     "pin_force_summary.csv, "
+                  << (alone.empty() ? "" : "tolerance_sensitivity.csv, ")
+                  << "extreme-samples/; " << seconds_since(start) << " s in all"
+                  << std::endl;
     }
 
 

@@ -3,6 +3,7 @@
 
 #include <cycloid/parameters/loading.h>
 #include <cycloid/reduced/reduced_model.h>
+#include <cycloid/results/cost_figures.h>
 #include <cycloid/results/stage_state.h>
 #include <cycloid/tolerance/sampler.h>
 #include <cycloid/tolerance/tolerance_parameters.h>
@@ -109,6 +110,23 @@ namespace cycloid
       int
       load_sign() const;
 
+      /**
+       * Solve every torque of one crank angle in order, each from the
+       * rotation of the one before, by @p solve (torque [N m], rotation
+       * guess [rad]); a torque cycle's zero torque is the limit of its
+       * side, @p limit (+1, -1). Each load becomes a state by @p state_of
+       * and is appended to @p states, its wall time counted from @p start
+       * (the first: the crank angle's set-up as well).
+       */
+      void
+      add_torques(
+        results::Clock::time_point                                start,
+        const std::function<analytic::LoadState(double, double)> &solve,
+        const std::function<analytic::LoadState(int)>            &limit,
+        const std::function<results::StageState(const analytic::LoadState &)>
+                                         &state_of,
+        std::vector<results::StageState> &states) const;
+
       /** The solver of the reduced model: condenses the mean stage at every
        * crank angle (collective); a sample then costs its own gaps and a
        * small complementarity solve per torque. */
@@ -133,10 +151,33 @@ namespace cycloid
                   const std::string         &label,
                   const bool                 keep_rows);
 
-      /** Write samples.csv, tolerance_summary.csv, pin_force_summary.csv
-       * and extreme-samples/ of @p study (rank 0). */
+      /** The console's first line: the study, the scene, the bands. */
+      void
+      announce() const;
+
+      /** The console's account of @p study: its cost, per state the load
+       * sharing and the peak pin force, the samples left out. */
+      void
+      print_outcome(const Study &study) const;
+
+      /** Figure @p i (an index into Study::figures' rows) of every
+       * solved sample of @p study but the mean. */
+      static std::vector<double>
+      drawn(const Study &study, const unsigned int i);
+
+      /** Write samples.csv, the summaries and the extreme samples of
+       * @p study (rank 0). */
       void
       write_study(const Study &study) const;
+
+      /** Write tolerance_summary.csv and pin_force_summary.csv. */
+      void
+      write_summaries(const Study &study) const;
+
+      /** Write extreme-samples/: the samples at the extremes of K_secant
+       * and of the peak pin force, as deviation files, and their list. */
+      void
+      write_extremes(const Study &study) const;
 
       /** Write tolerance_sensitivity.csv from the full @p study and the
        * studies of one band each, @p alone (band, study) (rank 0). */
