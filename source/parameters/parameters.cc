@@ -245,6 +245,20 @@ namespace cycloid
 
 
 
+    int
+    LoadingParameters::load_sign(const std::vector<double> &loads)
+    {
+      bool positive = false, negative = false;
+      for (const double t : loads)
+        {
+          positive |= t > 0;
+          negative |= t < 0;
+        }
+      return positive && negative ? 0 : (negative ? -1 : 1);
+    }
+
+
+
     std::vector<double>
     LoadingParameters::crank_angles(const double mesh_period) const
     {

@@ -46,13 +46,8 @@ namespace cycloid
     int
     ReducedRun<dim>::load_sign() const
     {
-      bool positive = false, negative = false;
-      for (const double t : settings.loading.torque_values())
-        {
-          positive |= t > 0;
-          negative |= t < 0;
-        }
-      return positive && negative ? 0 : (negative ? -1 : 1);
+      return parameters::LoadingParameters::load_sign(
+        settings.loading.torque_values());
     }
 
 

@@ -105,13 +105,7 @@ namespace cycloid
     int
     ToleranceRun<dim>::load_sign() const
     {
-      bool positive = false, negative = false;
-      for (const double t : torques)
-        {
-          positive |= t > 0;
-          negative |= t < 0;
-        }
-      return positive && negative ? 0 : (negative ? -1 : 1);
+      return parameters::LoadingParameters::load_sign(torques);
     }
 
 

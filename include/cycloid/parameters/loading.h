@@ -66,6 +66,12 @@ namespace cycloid
       static int
       zero_side(const std::vector<double> &loads, const unsigned int i);
 
+      /** The side(s) the torques @p loads load: +1 (all positive or
+       * zero), -1 (all negative or zero) or 0 (both signs: every pin may
+       * touch either flank). */
+      static int
+      load_sign(const std::vector<double> &loads);
+
       /** The torques of the states [N m] whatever Control says (the Torque
        * list or the torque cycle): the analytical model is torque-controlled
        * and ignores Control and Rotation. */
