@@ -11,7 +11,8 @@ Checks:
   numpy's percentiles, min, max, standard error std / sqrt(n), load_sharing
   = K_secant over sample 0's) to 1e-9;
 - the sensitivity's shares of each quantity sum to 1, and the samples vary;
-- zero bands: every sample is the nominal stage (load_sharing 1, std 0);
+- zero bands: every sample is the nominal stage (load_sharing 1, std 0),
+  and the console warns that the bands draw nothing;
 - a torque cycle at two crank angles: each sample's backlash (the spread of
   its rotations at zero torque) and transmission error peak-to-peak (the
   spread of its rotation over the crank angles, per torque) recomputed
@@ -129,6 +130,8 @@ def main():
         zero += "\nsubsection Tolerance study\n  set %s tolerance = 0\nend\n" % band
     zero += "subsection Tolerance study\n  set Number of samples = 5\nend\n"
     z = run(exe, work, "zero", zero, 1)
+    check("WARNING: every band of Tolerance study is 0" in open(z + ".log").read(),
+          "zero bands: no warning that every sample is the mean stage")
     zs = rows(os.path.join(z, "samples.csv"))
     check(len(zs) == 12, "zero bands: %d rows in samples.csv, 12 expected" % len(zs))
     for r in zs:

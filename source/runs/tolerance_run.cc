@@ -609,6 +609,13 @@ namespace cycloid
         std::cout << (b ? ", " : " ") << tolerance::band_name(b) << " "
                   << tolerance::band_width(p, b);
       std::cout << std::endl;
+      // The defaults draw nothing: say so rather than solve copies.
+      if (!p.any())
+        std::cout << "  WARNING: every band of Tolerance study is 0 (the "
+                     "default), so every sample is the mean stage; set Pin "
+                     "position tolerance, Pin radius tolerance, Eccentricity "
+                     "tolerance, Disc angle tolerance or Profile tolerance"
+                  << std::endl;
     }
 
 
