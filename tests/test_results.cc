@@ -47,6 +47,21 @@ namespace
     s.error.model           = 0.0034;
     s.error.contact_level   = 3;
     s.error.failure         = "x";
+    s.breakdown.contacts    = 1.25e-5;
+    s.breakdown.bodies      = 2.5e-5;
+    s.breakdown.bearings    = 1e-4;
+    for (unsigned int j = 0; j < n_pins % 7; ++j)
+      {
+        results::BearingState b;
+        b.disc            = j % 2;
+        b.crank           = j / 2;
+        b.fx              = 1234.5 + j;
+        b.fy              = -987.25 * j;
+        b.deflection      = 3.5e-3 * (j + 1);
+        b.rollers_loaded  = 5 + j;
+        b.max_roller_load = 456.75 * (j + 1);
+        s.bearings.push_back(b);
+      }
     for (unsigned int j = 0; j < n_pins; ++j)
       {
         results::PinState p;
@@ -99,7 +114,13 @@ TEST(StateBuffer, StructsHaveTheFieldsThePackingKnows)
               sizeof(unsigned long) +
               2 * sizeof(unsigned int) /* cycles_broken + padding */ +
               sizeof(double) /* cycle_tension */ + sizeof(unsigned long) +
-              2 * sizeof(double));
+              2 * sizeof(double) + sizeof(std::vector<results::BearingState>) +
+              sizeof(results::ComplianceBreakdown));
+  EXPECT_EQ(sizeof(results::BearingState),
+            2 * sizeof(unsigned int) + 3 * sizeof(double) +
+              2 * sizeof(unsigned int) /* rollers_loaded + padding */ +
+              sizeof(double));
+  EXPECT_EQ(sizeof(results::ComplianceBreakdown), 3 * sizeof(double));
 }
 
 
@@ -110,7 +131,7 @@ TEST(StateBuffer, EveryFieldComesBackExactly)
     {
       const results::StageState a      = distinct_state(n_pins);
       const std::vector<double> buffer = results::StateBuffer::pack(a);
-      EXPECT_EQ(buffer.size(), 23u + 21u * n_pins);
+      EXPECT_EQ(buffer.size(), 27u + 21u * n_pins + 7u * (n_pins % 7));
       const results::StageState b = results::StateBuffer::unpack(buffer);
       EXPECT_EQ(b.step, a.step);
       EXPECT_EQ(b.crank, a.crank);
@@ -134,6 +155,21 @@ TEST(StateBuffer, EveryFieldComesBackExactly)
       EXPECT_EQ(b.error.model, a.error.model);
       EXPECT_EQ(b.error.contact_level, a.error.contact_level);
       EXPECT_FALSE(b.error.failure.empty());
+      EXPECT_EQ(b.breakdown.contacts, a.breakdown.contacts);
+      EXPECT_EQ(b.breakdown.bodies, a.breakdown.bodies);
+      EXPECT_EQ(b.breakdown.bearings, a.breakdown.bearings);
+      ASSERT_EQ(b.bearings.size(), a.bearings.size());
+      for (unsigned int j = 0; j < a.bearings.size(); ++j)
+        {
+          const results::BearingState &p = a.bearings[j], &q = b.bearings[j];
+          EXPECT_EQ(q.disc, p.disc);
+          EXPECT_EQ(q.crank, p.crank);
+          EXPECT_EQ(q.fx, p.fx);
+          EXPECT_EQ(q.fy, p.fy);
+          EXPECT_EQ(q.deflection, p.deflection);
+          EXPECT_EQ(q.rollers_loaded, p.rollers_loaded);
+          EXPECT_EQ(q.max_roller_load, p.max_roller_load);
+        }
       ASSERT_EQ(b.pins.size(), a.pins.size());
       for (unsigned int j = 0; j < n_pins; ++j)
         {

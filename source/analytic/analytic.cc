@@ -8,6 +8,7 @@
 #include <cycloid/geometry/safeguarded_newton.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -472,41 +473,25 @@ namespace cycloid
 
 
 
-    LoadState
-    LoadDistribution::solve(const std::vector<PinLoad> &pins_in,
-                            const double                torque,
-                            const double                beta_guess) const
+    double
+    LoadDistribution::carrying_rotation(
+      const std::function<double(double, double &)> &torque_of,
+      const double                                   goal,
+      const double                                   sign,
+      const double                                   takeup,
+      const double                                   beta_guess,
+      double                                        &dg,
+      unsigned int                                  &iterations) const
     {
-      LoadState state;
-      state.torque        = torque;
-      state.pins          = pins_in;
-      const double target = torque * 1e3; // N m -> N mm
-      const double sign   = torque >= 0 ? 1. : -1.;
-      double       slope  = 0;
-
-      const double takeup = takeup_rotation(state.pins, sign);
-      state.takeup        = sign * takeup;
-
-      if (torque == 0)
-        {
-          state.rotation        = 0;
-          state.reaction_torque = torque_at(0., state.pins, slope) * 1e-3;
-          state.k_tangent       = slope * 1e-3;
-          return state;
-        }
-
       // Bracket [lo, hi] in terms of x = sign * beta (x >= takeup).
-      const auto g = [&](const double x, double &dg) {
-        const double t = sign * torque_at(sign * x, state.pins, dg);
-        return t;
+      const auto g = [&](const double x, double &slope) {
+        return sign * torque_of(sign * x, slope);
       };
-      const double goal = std::abs(target);
-      double       lo   = takeup;
-      double       step = 1e-6;
+      double lo   = takeup;
+      double step = 1e-6;
       if (sign * beta_guess > takeup)
         step = sign * beta_guess - takeup;
       double       hi       = lo + step;
-      double       dg       = 0;
       unsigned int n_expand = 0;
       while (g(hi, dg) < goal)
         {
@@ -548,17 +533,58 @@ namespace cycloid
           std::ostringstream msg;
           msg << "load distribution did not converge in " << max_iterations
               << " iterations (Analytic/Maximum iterations) for torque "
-              << torque << " N m.";
+              << sign * goal * 1e-3 << " N m.";
           AssertThrow(false, dealii::ExcMessage(msg.str()));
         }
-      const double t        = sign * g(x, dg);
+      iterations = it + n_expand;
+      return x;
+    }
+
+
+
+    LoadState
+    LoadDistribution::solve(const std::vector<PinLoad> &pins_in,
+                            const double                torque,
+                            const double                beta_guess) const
+    {
+      LoadState state;
+      state.torque        = torque;
+      state.pins          = pins_in;
+      const double target = torque * 1e3; // N m -> N mm
+      const double sign   = torque >= 0 ? 1. : -1.;
+      double       slope  = 0;
+
+      const double takeup = takeup_rotation(state.pins, sign);
+      state.takeup        = sign * takeup;
+
+      if (torque == 0)
+        {
+          state.rotation        = 0;
+          state.reaction_torque = torque_at(0., state.pins, slope) * 1e-3;
+          state.k_tangent       = slope * 1e-3;
+          return state;
+        }
+      const auto torque_of = [&](const double beta, double &dg) {
+        return torque_at(beta, state.pins, dg);
+      };
+      double       dg = 0;
+      const double x  = carrying_rotation(torque_of,
+                                         std::abs(target),
+                                         sign,
+                                         takeup,
+                                         beta_guess,
+                                         dg,
+                                         state.iterations);
+      const double t        = torque_of(sign * x, dg);
       state.rotation        = sign * x;
       state.reaction_torque = t * 1e-3;
       state.k_tangent       = dg * 1e-3;
-      state.iterations      = it + n_expand;
       for (const PinLoad &p : state.pins)
         if (p.force > 0)
           ++state.pins_in_contact;
+      state.breakdown.bodies   = 0;
+      state.breakdown.bearings = 0;
+      state.breakdown.contacts = state.rotation;
       return state;
     }
   } // namespace analytic

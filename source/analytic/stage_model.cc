@@ -90,6 +90,8 @@ namespace cycloid
       s.takeup          = load.takeup;
       s.reaction_torque = load.reaction_torque;
       s.iterations      = load.iterations;
+      s.bearings        = load.bearings;
+      s.breakdown       = load.breakdown;
       s.pins.reserve(load.pins.size());
       for (const PinLoad &p : load.pins)
         {
@@ -128,7 +130,7 @@ namespace cycloid
                       const double torque,
                       const double beta_guess) const
     {
-      return distribution.solve(unloaded_pins(psi), torque, beta_guess);
+      return solve(unloaded_pins(psi), torque, beta_guess, psi);
     }
   } // namespace analytic
 } // namespace cycloid

@@ -48,6 +48,7 @@ namespace cycloid
       profile::ProfileParameters::declare_parameters(prm);
       reduced::ReducedParameters::declare_parameters(prm);
       tolerance::ToleranceParameters::declare_parameters(prm);
+      support::CrankBearingParameters::declare_parameters(prm);
       geometry::DeviationsParameters::declare_parameters(prm);
     }
 
@@ -68,6 +69,7 @@ namespace cycloid
       profile.parse_parameters(prm);
       reduced.parse_parameters(prm);
       tolerance.parse_parameters(prm);
+      bearings.parse_parameters(prm);
       deviations.parse_parameters(prm);
       // Where the run mode and the dimension are both known.
       notes.clear();
@@ -75,6 +77,7 @@ namespace cycloid
       if (!discs.empty())
         notes.push_back(discs);
       resolve_error_estimate();
+      check_bearings();
       AssertThrow(scene.pin_core_radius < geometry.pin_radius,
                   dealii::ExcMessage(
                     "Scene/Pin core radius (" +
@@ -82,6 +85,31 @@ namespace cycloid
                     " mm) must be smaller than Geometry/Pin radius (" +
                     dealii::Utilities::to_string(geometry.pin_radius) +
                     " mm)."));
+    }
+
+
+
+    void
+    AllParameters::check_bearings() const
+    {
+      using M = parameters::RunParameters::Mode;
+      if (!bearings.needle())
+        return;
+      AssertThrow(run.mode == M::analytic || run.mode == M::reduced ||
+                    run.mode == M::tolerance || run.mode == M::profile ||
+                    run.mode == M::mesh,
+                  dealii::ExcMessage(
+                    "Crank bearings/Model = needle: the full FE model "
+                    "(Run = quasi-static, phase-sweep, transient) does not "
+                    "have crank bearings yet; Run = analytic, reduced or "
+                    "tolerance solves them (doc/bearings.md)."));
+      AssertThrow(geometry.n_crank_holes >= 2,
+                  dealii::ExcMessage(
+                    "Crank bearings/Model = needle needs Geometry/Number of "
+                    "crank holes >= 2 (a disc on one bearing is free to "
+                    "turn about it)."));
+      // The sizes fit the hole (throws with the reason otherwise).
+      bearings.size(geometry.crank_hole_radius, geometry.tooth_width);
     }
 
 

@@ -39,6 +39,7 @@ namespace cycloid
         s.mesh             = prm.mesh;
         s.contact          = prm.contact;
         s.analytic         = prm.analytic;
+        s.bearings         = prm.bearings;
         s.rotation_control = prm.loading.rotation_control;
         s.output_directory = prm.run.output_directory;
         return s;

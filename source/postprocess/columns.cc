@@ -1,6 +1,8 @@
 #include <cycloid/postprocess/columns.h>
 #include <cycloid/results/error_estimate.h>
 
+#include <cmath>
+
 namespace cycloid
 {
   namespace postprocess
@@ -136,6 +138,54 @@ namespace cycloid
         {"Fn_error_N", [](auto &o, const R &r) { o << r.pin.fn_error; }},
         {"active_nodes", [](auto &o, const R &r) { o << r.pin.active_nodes; }},
         {"hertz_nodes", [](auto &o, const R &r) { o << r.pin.hertz_nodes; }}};
+      return columns;
+    }
+
+
+
+    const std::vector<Column<BearingRow>> &
+    bearing_columns()
+    {
+      using R                                     = BearingRow;
+      static const std::vector<Column<R>> columns = {
+        {"step", [](auto &o, const R &r) { o << r.state.step; }},
+        {"crank_deg",
+         [](auto &o, const R &r) { o << r.state.crank * u::deg_per_rad; }},
+        {"disc", [](auto &o, const R &r) { o << r.bearing.disc; }},
+        {"crank", [](auto &o, const R &r) { o << r.bearing.crank; }},
+        {"Fx_N", [](auto &o, const R &r) { o << r.bearing.fx + 0.; }},
+        {"Fy_N", [](auto &o, const R &r) { o << r.bearing.fy + 0.; }},
+        {"F_N",
+         [](auto &o, const R &r) {
+           o << std::hypot(r.bearing.fx, r.bearing.fy);
+         }},
+        {"deflection_um",
+         [](auto &o, const R &r) {
+           o << r.bearing.deflection * u::um_per_mm;
+         }},
+        {"rollers_loaded",
+         [](auto &o, const R &r) { o << r.bearing.rollers_loaded; }},
+        {"max_roller_load_N",
+         [](auto &o, const R &r) { o << r.bearing.max_roller_load; }}};
+      return columns;
+    }
+
+
+
+    const std::vector<Column<results::StageState>> &
+    breakdown_columns()
+    {
+      using R                                     = results::StageState;
+      static const std::vector<Column<R>> columns = {
+        {"step", [](auto &o, const R &s) { o << s.step; }},
+        {"crank_deg", [](auto &o, const R &s) { o << s.crank * u::deg_per_rad; }},
+        {"torque_Nm", [](auto &o, const R &s) { o << s.torque; }},
+        {"total_rad", [](auto &o, const R &s) { o << s.rotation; }},
+        {"contacts_rad",
+         [](auto &o, const R &s) { o << s.breakdown.contacts; }},
+        {"bodies_rad", [](auto &o, const R &s) { o << s.breakdown.bodies; }},
+        {"bearings_rad",
+         [](auto &o, const R &s) { o << s.breakdown.bearings; }}};
       return columns;
     }
 

@@ -107,6 +107,16 @@ namespace cycloid
           streams.push_back(&energy);
           headers.push_back(energy_header());
         }
+      if (options.bearings)
+        {
+          streams.push_back(&bearing_forces);
+          headers.push_back(header(bearing_columns()));
+        }
+      if (options.breakdown)
+        {
+          streams.push_back(&breakdown);
+          headers.push_back(header(breakdown_columns()));
+        }
       for (unsigned int i = 0; i < names.size(); ++i)
         {
           const std::string file = options.directory + "/" + names[i];
@@ -143,6 +153,10 @@ namespace cycloid
       std::vector<std::string> names{"stiffness.csv", "pin_forces.csv"};
       if (options.energy)
         names.emplace_back("energy.csv");
+      if (options.bearings)
+        names.emplace_back("bearing_forces.csv");
+      if (options.breakdown)
+        names.emplace_back("compliance_breakdown.csv");
       return names;
     }
 
@@ -179,6 +193,17 @@ namespace cycloid
         write_row(pin_forces, pin_force_columns(), PinRow{s, p});
       stiffness.flush();
       pin_forces.flush();
+      if (options.bearings)
+        {
+          for (const results::BearingState &b : s.bearings)
+            write_row(bearing_forces, bearing_columns(), BearingRow{s, b});
+          bearing_forces.flush();
+        }
+      if (options.breakdown)
+        {
+          write_row(breakdown, breakdown_columns(), s);
+          breakdown.flush();
+        }
 
       auto it = std::find_if(series.begin(),
                              series.end(),
@@ -242,6 +267,14 @@ namespace cycloid
                   << " pin " << most->pin << "), peak contact pressure "
                   << highest->max_pressure << " MPa (disc " << highest->disc
                   << " pin " << highest->pin << ")";
+      if (!s.bearings.empty() && s.rotation != 0)
+        {
+          double peak = 0;
+          for (const results::BearingState &b : s.bearings)
+            peak = std::max(peak, std::hypot(b.fx, b.fy));
+          std::cout << ", crank bearings " << 100. * s.breakdown.bearings / s.rotation
+                    << " % of beta, largest bearing force " << peak << " N";
+        }
       if (s.dofs > 0)
         std::cout << ", dofs " << s.dofs;
       std::cout << ", " << s.wall_s << " s" << std::endl;
@@ -547,9 +580,16 @@ namespace cycloid
     {
       if (!active)
         return;
-      std::string written = "stiffness.csv, pin_forces.csv";
-      if (options.energy)
-        written += ", energy.csv";
+      std::string written;
+      for (const std::string &name : files())
+        written += (written.empty() ? "" : ", ") + name;
+      if (options.bearings)
+        std::cout << "  crank bearings: the rotation, rigidity and lost "
+                     "motion are the cycloid stage's on its crank needle "
+                     "bearings, the eccentrics rigid; the crankshafts, their "
+                     "main bearings and the output carrier are not in them "
+                     "(doc/bearings.md)"
+                  << std::endl;
       if (options.fluctuation && !series.empty() &&
           series.front().crank.size() > 1)
         {

@@ -226,6 +226,8 @@ namespace cycloid
     ComplementaritySolver::solve(const double torque,
                                  const double beta_guess) const
     {
+      if (supports)
+        return solve_supported(torque, beta_guess);
       const unsigned int n = pairs.size();
       ReducedSolution    s;
       s.force.assign(n, 0.);
@@ -278,6 +280,8 @@ namespace cycloid
           s.compliance[i] =
             C(i, i) + (s.force[i] > 0 ? slope(i, s.force[i], floor) : 0.);
         }
+      s.bodies_work = C.matrix_norm_square(dealii::Vector<double>(
+        s.force.begin(), s.force.end()));
       return s;
     }
   } // namespace reduced

@@ -273,6 +273,8 @@ namespace cycloid
                                1. / pin.pair.pin_radius -
                                  (std::isfinite(rho) ? 1. / rho : 0.));
           p.rigid_gap = rigid_gap(pin.contact);
+          p.disc      = pin.contact.disc;
+          p.normal    = pin.contact.normal;
           pairs.push_back(p);
         }
       solver = std::make_unique<ComplementaritySolver>(
@@ -280,6 +282,8 @@ namespace cycloid
         pairs,
         std::max(settings.stage.analytic.tolerance, 1e-10),
         settings.stage.analytic.max_iterations);
+      if (settings.stage.bearings.needle())
+        solver->set_supports(model.supports(psi));
     }
 
 
@@ -291,7 +295,7 @@ namespace cycloid
       namespace u = results::units;
       // The analytical model gives the take-up and, for a first state, the
       // first active set (its beta is smaller: it is stiffer).
-      analytic::LoadState load = model.solve(pins, torque, beta_guess);
+      analytic::LoadState load = model.solve(pins, torque, beta_guess, psi);
       if (torque == 0)
         return load;
       const ReducedSolution s =
@@ -314,16 +318,49 @@ namespace cycloid
       load.pins_in_contact = 0;
       for (analytic::PinLoad &p : load.pins)
         {
+          // The disc's motion: its turn (the rotation on rigid supports)
+          // and, on bearings, its translation.
+          const unsigned int   d = p.contact.disc;
+          const double         theta =
+            s.motions.empty() ? s.rotation : s.motions[d].rotation;
+          const double closing =
+            s.motions.empty() ? 0. : p.contact.normal * s.motions[d].translation;
           // A loaded pin acts at the point the turned disc touches it.
           if (p.force > 0)
-            p.contact.arm = rigid_gap(p.contact)(s.rotation).second;
-          p.approach =
-            std::max(0., s.rotation * p.contact.arm - p.contact.clearance);
+            p.contact.arm = rigid_gap(p.contact)(theta).second;
+          p.approach = std::max(0.,
+                                closing + theta * p.contact.arm -
+                                  p.contact.clearance);
           load.reaction_torque += p.force * p.contact.arm * u::Nm_per_Nmm;
           if (p.force > 0)
             ++load.pins_in_contact;
         }
+      set_supported_figures(s, torque * u::Nmm_per_Nm, load);
       return load;
+    }
+
+
+
+    template <int dim>
+    void
+    ReducedModel<dim>::set_supported_figures(const ReducedSolution &s,
+                                             const double           torque,
+                                             analytic::LoadState   &load) const
+    {
+      load.motions = s.motions;
+      load.bearings.clear();
+      if (!s.motions.empty())
+        {
+          const support::CrankSupports supports = model.supports(psi);
+          for (unsigned int d = 0; d < s.motions.size(); ++d)
+            for (const auto &b : supports.states(d, s.motions[d], s.rotation))
+              load.bearings.push_back(b);
+        }
+      // Each part's share of the output work T beta, over T.
+      load.breakdown.bodies   = s.bodies_work / torque;
+      load.breakdown.bearings = s.bearings_work / torque;
+      load.breakdown.contacts =
+        s.rotation - load.breakdown.bodies - load.breakdown.bearings;
     }
 
 

@@ -39,6 +39,22 @@ namespace cycloid
         f(s.error.bulk);
         f(s.error.model);
         f(s.error.contact_level);
+        f(s.breakdown.contacts);
+        f(s.breakdown.bodies);
+        f(s.breakdown.bearings);
+      }
+
+      template <typename Bearing, typename Field>
+      void
+      for_each_bearing_field(Bearing &b, Field &&f)
+      {
+        f(b.disc);
+        f(b.crank);
+        f(b.fx);
+        f(b.fy);
+        f(b.deflection);
+        f(b.rollers_loaded);
+        f(b.max_roller_load);
       }
 
       template <typename Pin, typename Field>
@@ -92,6 +108,13 @@ namespace cycloid
         return count<PinState>(
           [](PinState &p, auto &&f) { for_each_pin_field(p, f); });
       }
+
+      unsigned int
+      n_bearing_fields()
+      {
+        return count<BearingState>(
+          [](BearingState &b, auto &&f) { for_each_bearing_field(b, f); });
+      }
     } // namespace
 
 
@@ -100,7 +123,8 @@ namespace cycloid
     StateBuffer::pack(const StageState &state)
     {
       std::vector<double> buffer;
-      buffer.reserve(n_state_fields() + 2 + state.pins.size() * n_pin_fields());
+      buffer.reserve(n_state_fields() + 3 + state.pins.size() * n_pin_fields() +
+                     state.bearings.size() * n_bearing_fields());
       const auto put = [&buffer](const auto &x) {
         buffer.push_back(static_cast<double>(x));
       };
@@ -112,6 +136,9 @@ namespace cycloid
       buffer.push_back(state.pins.size());
       for (const PinState &p : state.pins)
         for_each_pin_field(p, put);
+      buffer.push_back(state.bearings.size());
+      for (const BearingState &b : state.bearings)
+        for_each_bearing_field(b, put);
       return buffer;
     }
 
@@ -125,10 +152,19 @@ namespace cycloid
                   dealii::ExcMessage("StateBuffer: " + std::to_string(size) +
                                      " doubles are too few for a state."));
       const unsigned int n_pins = static_cast<unsigned int>(data[header - 1]);
-      AssertThrow(size == header + n_pins * n_pin_fields(),
+      const unsigned int at_bearings = header + n_pins * n_pin_fields();
+      AssertThrow(size > at_bearings,
                   dealii::ExcMessage("StateBuffer: " + std::to_string(size) +
                                      " doubles do not hold a state with " +
                                      std::to_string(n_pins) + " pins."));
+      const unsigned int n_bearings =
+        static_cast<unsigned int>(data[at_bearings]);
+      AssertThrow(size == at_bearings + 1 + n_bearings * n_bearing_fields(),
+                  dealii::ExcMessage("StateBuffer: " + std::to_string(size) +
+                                     " doubles do not hold a state with " +
+                                     std::to_string(n_pins) + " pins and " +
+                                     std::to_string(n_bearings) +
+                                     " bearings."));
       unsigned int i   = 0;
       const auto   get = [data, &i](auto &x) {
         x = static_cast<std::remove_reference_t<decltype(x)>>(data[i++]);
@@ -142,6 +178,10 @@ namespace cycloid
       state.pins.resize(n_pins);
       for (PinState &p : state.pins)
         for_each_pin_field(p, get);
+      ++i; // the number of bearings
+      state.bearings.resize(n_bearings);
+      for (BearingState &b : state.bearings)
+        for_each_bearing_field(b, get);
       return state;
     }
   } // namespace results

@@ -72,6 +72,8 @@ namespace cycloid
       options.allowable_pressure =
         settings.model.material.allowable_contact_pressure;
       options.discretised  = false;
+      options.bearings     = settings.model.bearings.needle();
+      options.breakdown    = true;
       options.torque_cycle = settings.loading.torque_cycle;
       options.rated_torque = settings.loading.rated_torque;
       options.lost_motion_fraction =
@@ -117,8 +119,9 @@ namespace cycloid
                     settings.loading.torque_cycle && torques[t] == 0 ?
                       model.zero_torque_limit(
                         pins,
-                        parameters::LoadingParameters::zero_side(torques, t)) :
-                      model.solve(pins, torques[t], beta);
+                        parameters::LoadingParameters::zero_side(torques, t),
+                        psi) :
+                      model.solve(pins, torques[t], beta, psi);
                 }
               catch (dealii::ExceptionBase &e)
                 {

@@ -66,6 +66,8 @@ namespace cycloid
       // differ by the crank holes, which stay with the disc (an FE sweep's
       // periodic meshes turn them by a pin pitch instead).
       options.discretised  = false;
+      options.bearings     = settings.model.stage.bearings.needle();
+      options.breakdown    = true;
       options.torque_cycle = settings.loading.torque_cycle;
       options.rated_torque = settings.loading.rated_torque;
       options.lost_motion_fraction =

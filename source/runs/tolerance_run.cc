@@ -208,10 +208,10 @@ namespace cycloid
             add_torques(
               states.empty() ? start : Clock::now(),
               [&](const double torque, const double beta) {
-                return model.solve(pins, torque, beta);
+                return model.solve(pins, torque, beta, psi);
               },
               [&](const int side) {
-                return model.zero_torque_limit(pins, side);
+                return model.zero_torque_limit(pins, side, psi);
               },
               [&](const analytic::LoadState &load) {
                 return model.stage_state(load, psi);

@@ -46,7 +46,7 @@ namespace cycloid
     analytic::ModelSettings
     StageSettings::model_settings() const
     {
-      return {geometry, material, scene, analytic};
+      return {geometry, material, scene, analytic, bearings};
     }
 
 

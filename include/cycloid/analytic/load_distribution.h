@@ -3,7 +3,10 @@
 
 #include <cycloid/analytic/pair_stiffness.h>
 #include <cycloid/geometry/cycloid_geometry.h>
+#include <cycloid/support/crank_supports.h>
 
+#include <array>
+#include <functional>
 #include <vector>
 
 namespace cycloid
@@ -50,6 +53,13 @@ namespace cycloid
       unsigned int iterations = 0;
       /** Every pin of every disc. */
       std::vector<PinLoad> pins;
+      /** Each disc's rigid motion on its crank bearings (empty on rigid
+       * supports, where each disc turns by the rotation). */
+      std::vector<support::DiscMotion> motions;
+      /** Every crank bearing of every disc (empty on rigid supports). */
+      std::vector<results::BearingState> bearings;
+      /** Where the rotation comes from. */
+      results::ComplianceBreakdown breakdown;
 
       /** Secant stiffness T / beta [N m/rad]. */
       double
@@ -71,6 +81,8 @@ namespace cycloid
      * safeguarded Newton iteration (slope sum k_i l_i^2) converges for any
      * pair model with non-decreasing F.
      */
+    class DiscEquilibrium;
+
     class LoadDistribution
     {
     public:
@@ -90,6 +102,18 @@ namespace cycloid
             const double                beta_guess = 0.) const;
 
       /**
+       * The same on the crank bearings @p supports: each disc translates
+       * and turns against its bearings until it is in equilibrium
+       * (DiscEquilibrium) at every rotation beta of the eccentrics, and beta
+       * carries the torque. The bearings' clearance adds to the take-up.
+       */
+      LoadState
+      solve(const std::vector<PinLoad>    &pins,
+            const double                   torque,
+            const double                   beta_guess,
+            const support::CrankSupports &supports) const;
+
+      /**
        * The limit of the load state as the torque goes to zero from side
        * @p side (+1 or -1): beta is the signed take-up rotation, every pin
        * just touching or clear, no force. (A frictionless stage at zero
@@ -97,6 +121,14 @@ namespace cycloid
        */
       LoadState
       zero_torque_limit(const std::vector<PinLoad> &pins, const int side) const;
+
+      /** The same on the crank bearings @p supports: the take-up is the
+       * largest rotation at which the discs, free in their bearings'
+       * clearance, still carry no torque. */
+      LoadState
+      zero_torque_limit(const std::vector<PinLoad>    &pins,
+                        const int                      side,
+                        const support::CrankSupports &supports) const;
 
     private:
       /** Torque [N mm] and slope [N mm/rad] at rotation beta, filling the
@@ -106,9 +138,77 @@ namespace cycloid
                 std::vector<PinLoad> &pins,
                 double               &slope) const;
 
+      /** The rotation x (sign * beta) that carries @p goal [N mm] of
+       * sign @p sign from take-up @p takeup, @p torque_of(beta, slope)
+       * the torque [N mm] at beta: a bracket and a safeguarded Newton
+       * iteration. Returns x; @p slope [N mm/rad] and @p iterations at it. */
+      double
+      carrying_rotation(
+        const std::function<double(double, double &)> &torque_of,
+        const double                                   goal,
+        const double                                   sign,
+        const double                                   takeup,
+        const double                                   beta_guess,
+        double                                        &slope,
+        unsigned int                                  &iterations) const;
+
       const PairStiffnessModel &model;
       const double              tolerance;
       const unsigned int        max_iterations;
+    };
+
+    /**
+     * @brief Each disc in equilibrium on its crank bearings at a rotation
+     * beta of the eccentrics: the disc motion q = (t, theta) such that its
+     * pins, F_i = F(n_i . t + theta l_i - c_i), and its bearings
+     * (support::CrankSupports) balance in force and moment. The energy is
+     * convex in q, so a Newton iteration with a backtracking line search
+     * finds it; the torque T(beta) = sum F_i l_i it gives is
+     * non-decreasing in beta, with dT/dbeta from the implicit function.
+     */
+    class DiscEquilibrium
+    {
+    public:
+      /** Keeps references to @p model and @p supports. */
+      DiscEquilibrium(const PairStiffnessModel     &model,
+                      const support::CrankSupports &supports,
+                      const double                  tolerance,
+                      const unsigned int            max_iterations,
+                      const double                  floor);
+
+      /** The torque [N mm] at rotation @p beta [rad], its slope @p slope
+       * [N mm/rad]; @p pins' forces and @p motions (the warm start, one per
+       * disc) at equilibrium. */
+      double
+      torque_at(const double                      beta,
+                std::vector<PinLoad>             &pins,
+                std::vector<support::DiscMotion> &motions,
+                double                           &slope) const;
+
+    private:
+      /** Residual (force, moment of pins and bearings on disc @p d) and
+       * its 3 x 4 derivative in (t_x, t_y, theta, beta), @p pins' forces
+       * filled; bearings at least @p floor stiff per roller. */
+      std::array<double, 3>
+      residual(const unsigned int          d,
+               const support::DiscMotion  &q,
+               const double                beta,
+               const double                floor,
+               std::vector<PinLoad>       &pins,
+               dealii::FullMatrix<double> &derivative) const;
+
+      /** Newton for disc @p d, @p q in place; throws if it fails. */
+      void
+      solve_disc(const unsigned int    d,
+                 const double          beta,
+                 std::vector<PinLoad> &pins,
+                 support::DiscMotion  &q) const;
+
+      const PairStiffnessModel     &model;
+      const support::CrankSupports &supports;
+      const double                  tolerance;
+      const unsigned int            max_iterations;
+      const double                  floor;
     };
   } // namespace analytic
 } // namespace cycloid

@@ -24,6 +24,8 @@ namespace cycloid
       parameters::MaterialParameters material; ///< Subsection `Material`.
       parameters::SceneParameters    scene;    ///< Subsection `Scene`.
       AnalyticParameters             analytic; ///< Subsection `Analytic`.
+      support::CrankBearingParameters
+        bearings; ///< Subsection `Crank bearings`.
     };
 
     /**
@@ -68,21 +70,41 @@ namespace cycloid
             const double beta_guess) const;
 
       /** Solve the load distribution over already computed unloaded pins
-       * (see unloaded_pins()). */
+       * (see unloaded_pins()) at crank angle @p psi [rad], on the crank
+       * bearings if there are any. */
       LoadState
       solve(const std::vector<PinLoad> &pins,
             const double                torque,
-            const double                beta_guess) const
+            const double                beta_guess,
+            const double                psi) const
       {
-        return distribution.solve(pins, torque, beta_guess);
+        if (!prm.bearings.needle())
+          return distribution.solve(pins, torque, beta_guess);
+        return distribution.solve(pins, torque, beta_guess, supports(psi));
+      }
+
+      /** The crank bearings at crank angle @p psi [rad] (Crank bearings =
+       * needle). */
+      support::CrankSupports
+      supports(const double psi) const
+      {
+        return support::CrankSupports(prm.bearings,
+                                      geo,
+                                      prm.scene.n_discs,
+                                      psi);
       }
 
       /** The zero-torque limit from side @p side (+1 or -1) over already
-       * computed unloaded pins (LoadDistribution::zero_torque_limit()). */
+       * computed unloaded pins (LoadDistribution::zero_torque_limit()) at
+       * crank angle @p psi [rad]. */
       LoadState
-      zero_torque_limit(const std::vector<PinLoad> &pins, const int side) const
+      zero_torque_limit(const std::vector<PinLoad> &pins,
+                        const int                   side,
+                        const double                psi) const
       {
-        return distribution.zero_torque_limit(pins, side);
+        if (!prm.bearings.needle())
+          return distribution.zero_torque_limit(pins, side);
+        return distribution.zero_torque_limit(pins, side, supports(psi));
       }
 
       /**

@@ -17,6 +17,7 @@
 #include <cycloid/parameters/scene.h>
 #include <cycloid/profile/profile_parameters.h>
 #include <cycloid/reduced/reduced_parameters.h>
+#include <cycloid/support/crank_bearing_parameters.h>
 #include <cycloid/tolerance/tolerance_parameters.h>
 
 #include <map>
@@ -52,6 +53,8 @@ namespace cycloid
       profile::ProfileParameters profile;
       /** Subsection Reduced (Run = reduced). */
       reduced::ReducedParameters reduced;
+      /** Subsection Crank bearings. */
+      support::CrankBearingParameters bearings;
       /** Subsection Tolerance study (Run = tolerance). */
       tolerance::ToleranceParameters tolerance;
       /** Subsection Deviations: read into `geometry` by read(). */
@@ -110,6 +113,12 @@ namespace cycloid
       void
       resolve_error_estimate();
 
+      /** Throw if `Crank bearings` cannot be run: needle bearings in a
+       * mode whose model does not have them yet, fewer than two crank
+       * holes, or rollers that do not fit the hole. */
+      void
+      check_bearings() const;
+
       /** Resolve `Mesh/Target accuracy = auto`: the Warning threshold if
        * the run @p solves FE states in 2D with the estimate not off, else
        * 0 (with a note when it is set). */
@@ -143,7 +152,7 @@ namespace cycloid
       analytic::ModelSettings
       model_settings() const
       {
-        return {geometry, material, scene, analytic};
+        return {geometry, material, scene, analytic, bearings};
       }
 
       /** Throw if the file sets both Geometry/Pin circle radius and a

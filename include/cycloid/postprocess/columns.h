@@ -46,6 +46,13 @@ namespace cycloid
       const results::PinState   &pin;   ///< One of its pins.
     };
 
+    /** What a row of `bearing_forces.csv` is made of. */
+    struct BearingRow
+    {
+      const results::StageState   &state;   ///< The state.
+      const results::BearingState &bearing; ///< One of its bearings.
+    };
+
     /** What a row of `energy.csv` is made of. */
     struct EnergyRow
     {
@@ -60,6 +67,15 @@ namespace cycloid
     /** The columns of `pin_forces.csv`, in file order. */
     const std::vector<Column<PinRow>> &
     pin_force_columns();
+
+    /** The columns of `bearing_forces.csv`, in file order. */
+    const std::vector<Column<BearingRow>> &
+    bearing_columns();
+
+    /** The columns of `compliance_breakdown.csv`, in file order (a row is
+     * a state). */
+    const std::vector<Column<results::StageState>> &
+    breakdown_columns();
 
     /** The columns of `energy.csv`, in file order. */
     const std::vector<Column<EnergyRow>> &

@@ -56,6 +56,11 @@ namespace cycloid
         bool rotation_control = false;
         /** Write energy.csv (transient runs). */
         bool energy = false;
+        /** Write bearing_forces.csv (Crank bearings = needle). */
+        bool bearings = false;
+        /** Write compliance_breakdown.csv (models that split the
+         * rotation: analytic and reduced). */
+        bool breakdown = false;
         /** Write fluctuation.csv when the states of a load cover several
          * crank angles (phase sweeps; not for a transient, whose load
          * changes from step to step). */
@@ -220,6 +225,8 @@ namespace cycloid
       std::ofstream             stiffness;
       std::ofstream             pin_forces;
       std::ofstream             energy;
+      std::ofstream             bearing_forces;
+      std::ofstream             breakdown;
       std::vector<Series>       series;
       std::vector<TorsionPoint> cycle;
       PeakPin                   peak;

@@ -4,8 +4,12 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <cycloid/reduced/local_contact.h>
+#include <cycloid/support/crank_supports.h>
+
+#include <deal.II/lac/vector.h>
 
 #include <functional>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -35,6 +39,11 @@ namespace cycloid
       double length = 1;
       /** Its near field. */
       LocalContact law{1., 1., 1.};
+      /** The disc it is on. */
+      unsigned int disc = 0;
+      /** Unit normal from the disc towards the pin (a translation t of
+       * the disc closes the gap by n . t). */
+      dealii::Tensor<1, 2> normal;
     };
 
     /** @brief A solved load state of the reduced model. */
@@ -52,6 +61,14 @@ namespace cycloid
       unsigned int iterations = 0;
       /** Active sets tried. */
       unsigned int active_sets = 0;
+      /** Each disc's motion on its crank bearings (empty on rigid
+       * supports). */
+      std::vector<support::DiscMotion> motions;
+      /** The elastic bodies' part F^T C F of the output work T beta
+       * [N mm]. */
+      double bodies_work = 0;
+      /** The crank bearings' part of it [N mm]. */
+      double bearings_work = 0;
     };
 
     /**
@@ -81,7 +98,49 @@ namespace cycloid
       ReducedSolution
       solve(const double torque, const double beta_guess) const;
 
+      /** Put the discs on crank bearings: each disc d then moves by
+       * (t_d, theta_d) against them (support::CrankSupports), its pins'
+       * gaps closing by n_i . t_d + (the rigid gap at theta_d), and the
+       * Newton iteration of each active set also solves each disc's
+       * equilibrium of force and moment. */
+      void
+      set_supports(const support::CrankSupports &supports);
+
     private:
+      /** solve() on crank bearings. */
+      ReducedSolution
+      solve_supported(const double torque, const double beta_guess) const;
+
+      /** The residual of the problem on crank bearings for the active set
+       * @p active (gaps, each disc's force and moment, the torque) and its
+       * Jacobian in (F_active, (t_x, t_y, theta) per disc, beta). */
+      void
+      supported_system(const std::vector<unsigned int>        &active,
+                       const std::vector<double>              &F,
+                       const std::vector<support::DiscMotion> &q,
+                       const double                            beta,
+                       const double                            torque,
+                       const double                            floor,
+                       const double                            bearing_floor,
+                       dealii::Vector<double>                 &r,
+                       dealii::FullMatrix<double>             &J) const;
+
+      /** Newton on crank bearings, like newton(). */
+      unsigned int
+      supported_newton(const std::vector<unsigned int> &active,
+                       const double                     torque,
+                       const double                     floor,
+                       const double                     bearing_floor,
+                       std::vector<double>             &F,
+                       std::vector<support::DiscMotion> &q,
+                       double                          &beta) const;
+
+      /** next_active_set() with the discs moved by @p q. */
+      std::vector<unsigned int>
+      next_supported_set(const std::vector<unsigned int>        &active,
+                         const std::vector<double>              &F,
+                         const std::vector<support::DiscMotion> &q) const;
+
       /** Gap and arm of contact @p i at rotation @p beta (rigid_gap or the
        * linear one). */
       std::pair<double, double>
@@ -132,6 +191,8 @@ namespace cycloid
 
       const dealii::FullMatrix<double> C;
       const std::vector<ContactPair>   pairs;
+      /** The crank bearings (none: rigid supports). */
+      std::unique_ptr<support::CrankSupports> supports;
       const double                     tolerance;
       const unsigned int               max_iterations;
     };

@@ -127,7 +127,7 @@ namespace cycloid
       analytic::LoadState
       zero_torque_limit(const int side) const
       {
-        return model.zero_torque_limit(pins, side);
+        return model.zero_torque_limit(pins, side, psi);
       }
 
       /** @p load as the stage state every model returns. */
@@ -177,6 +177,12 @@ namespace cycloid
       /** The complementarity problem in the stage's units. */
       void
       build_solver();
+      /** @p load's disc motions, bearing states and compliance breakdown
+       * from the solution @p s at torque @p torque [N mm]. */
+      void
+      set_supported_figures(const ReducedSolution &s,
+                            const double           torque,
+                            analytic::LoadState   &load) const;
 
       const ReducedSettings settings;
       const double          psi;

@@ -154,6 +154,42 @@ namespace cycloid
     };
 
     /**
+     * @brief One crank bearing in a solved state (Crank bearings = needle).
+     */
+    struct BearingState
+    {
+      unsigned int disc  = 0; ///< Disc index, from 0.
+      unsigned int crank = 0; ///< Crank hole, from 0 counter-clockwise.
+      /** Force of the bearing on the disc, housing frame [N]. */
+      double fx = 0;
+      double fy = 0; ///< y component of the force [N].
+      /** Radial deflection: the crank hole's centre against its
+       * eccentric's, the clearance taken up included [mm]. */
+      double deflection = 0;
+      /** Rollers carrying load [-]. */
+      unsigned int rollers_loaded = 0;
+      /** Largest roller load [N]. */
+      double max_roller_load = 0;
+    };
+
+    /**
+     * @brief The output rotation of a state split by where it comes from
+     * (doc/bearings.md): each part's share of the output work T beta
+     * divided by T, so the parts sum to beta.
+     */
+    struct ComplianceBreakdown
+    {
+      /** The pin contacts: their clearances, near fields and the contact
+       * points' slide (the rest of beta) [rad]. */
+      double contacts = std::numeric_limits<double>::quiet_NaN();
+      /** The elastic bodies (the reduced model's condensed compliance;
+       * 0 for the analytical model, whose pair law holds them) [rad]. */
+      double bodies = std::numeric_limits<double>::quiet_NaN();
+      /** The crank bearings [rad]. */
+      double bearings = std::numeric_limits<double>::quiet_NaN();
+    };
+
+    /**
      * @brief A solved load state of the stage: one crank angle, one load,
      * all discs (they share one rotation beta) and all pins, for the whole
      * tooth width, with what it cost.
@@ -177,6 +213,11 @@ namespace cycloid
       double reaction_torque = 0;
       /** Every pin of every disc, disc-major. */
       std::vector<PinState> pins;
+      /** Every crank bearing of every disc (Crank bearings = needle),
+       * disc-major. */
+      std::vector<BearingState> bearings;
+      /** Where the rotation comes from (models that can say). */
+      ComplianceBreakdown breakdown;
       /** Its error estimate (FE states). */
       ErrorEstimate error;
 

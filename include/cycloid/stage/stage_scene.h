@@ -50,6 +50,9 @@ namespace cycloid
         contact; ///< Subsections `Contact` and `Solver`.
       analytic::AnalyticParameters
         analytic; ///< Subsection `Analytic` (warm start).
+      /** Subsection `Crank bearings` (the reduced model's; the FE scene
+       * holds the crank holes rigidly). */
+      support::CrankBearingParameters bearings;
       /** The loads of solve() are rotations [rad], not torques [N m]. */
       bool rotation_control = false;
       /** The run solves all its states on one operator (a transient run

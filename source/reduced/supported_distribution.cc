@@ -1,0 +1,283 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <cycloid/reduced/load_distribution.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace cycloid
+{
+  namespace reduced
+  {
+    // The load distribution of the reduced model on crank bearings
+    // (doc/bearings.md): the unknowns of load_distribution.cc's problem
+    // plus each disc's translation and rotation against its bearings.
+
+    void
+    ComplementaritySolver::set_supports(const support::CrankSupports &s)
+    {
+      supports = std::make_unique<support::CrankSupports>(s);
+    }
+
+
+
+    void
+    ComplementaritySolver::supported_system(
+      const std::vector<unsigned int>        &active,
+      const std::vector<double>              &F,
+      const std::vector<support::DiscMotion> &q,
+      const double                            beta,
+      const double                            torque,
+      const double                            floor,
+      const double                            bearing_floor,
+      dealii::Vector<double>                 &r,
+      dealii::FullMatrix<double>             &J) const
+    {
+      const unsigned int m  = active.size();
+      const unsigned int nd = supports->n_discs();
+      const unsigned int N  = m + 3 * nd + 1;
+      const unsigned int tb = N - 1; // the torque row, the beta column
+      r.reinit(N);
+      J.reinit(N, N);
+      for (unsigned int d = 0; d < nd; ++d)
+        {
+          const auto b = supports->resultant(d, q[d], beta, bearing_floor);
+          for (unsigned int a = 0; a < 3; ++a)
+            {
+              r(m + 3 * d + a) = b.value[a];
+              for (unsigned int c = 0; c < 3; ++c)
+                J(m + 3 * d + a, m + 3 * d + c) = b.derivative(a, c);
+              J(m + 3 * d + a, tb) = b.derivative(a, 3);
+            }
+        }
+      for (unsigned int a = 0; a < m; ++a)
+        {
+          const unsigned int   i     = active[a];
+          const unsigned int   d     = pairs[i].disc;
+          const unsigned int   row   = m + 3 * d;
+          const double         theta = q[d].rotation;
+          const auto           n     = pairs[i].normal;
+          const auto [gap, arm]      = rigid_gap(i, theta);
+          const double dl            = arm_slope(i, theta);
+          // Gap: the rigid gap at theta, closed by n . t, opened by the
+          // bodies' and the near field's give.
+          r(a) = gap - n * q[d].translation + approach(i, F[i], floor);
+          for (unsigned int b = 0; b < m; ++b)
+            {
+              r(a) += C(i, active[b]) * F[active[b]];
+              J(a, b) = C(i, active[b]);
+            }
+          J(a, a) += slope(i, F[i], floor);
+          J(a, row)     = -n[0];
+          J(a, row + 1) = -n[1];
+          J(a, row + 2) = -arm;
+          // The pin pushes its disc back along -n with moment -F l.
+          r(row) -= F[i] * n[0];
+          r(row + 1) -= F[i] * n[1];
+          r(row + 2) -= F[i] * arm;
+          J(row, a)     = -n[0];
+          J(row + 1, a) = -n[1];
+          J(row + 2, a) = -arm;
+          J(row + 2, row + 2) -= F[i] * dl;
+          // Torque.
+          r(tb) += F[i] * arm;
+          J(tb, a) = arm;
+          J(tb, row + 2) += F[i] * dl;
+        }
+      r(tb) -= torque;
+    }
+
+
+
+    unsigned int
+    ComplementaritySolver::supported_newton(
+      const std::vector<unsigned int>  &active,
+      const double                      torque,
+      const double                      floor,
+      const double                      bearing_floor,
+      std::vector<double>              &F,
+      std::vector<support::DiscMotion> &q,
+      double                           &beta) const
+    {
+      const unsigned int m   = active.size();
+      const double       rho = supports->crank_circle_radius();
+      for (unsigned int it = 1; it <= max_iterations; ++it)
+        {
+          dealii::Vector<double>     r;
+          dealii::FullMatrix<double> Jf;
+          supported_system(
+            active, F, q, beta, torque, floor, bearing_floor, r, Jf);
+          dealii::LAPACKFullMatrix<double> J(r.size(), r.size());
+          J = Jf;
+          J.compute_lu_factorization();
+          J.solve(r);
+          double step = 0, scale = 0;
+          for (unsigned int a = 0; a < m; ++a)
+            {
+              F[active[a]] -= r(a);
+              step  = std::max(step, std::abs(r(a)));
+              scale = std::max(scale, std::abs(F[active[a]]));
+            }
+          // Every motion measured as a length at the crank circle.
+          double move = 0;
+          for (unsigned int d = 0; d < q.size(); ++d)
+            {
+              const unsigned int k = m + 3 * d;
+              q[d].translation[0] -= r(k);
+              q[d].translation[1] -= r(k + 1);
+              q[d].rotation -= r(k + 2);
+              move = std::max({move,
+                               std::abs(r(k)),
+                               std::abs(r(k + 1)),
+                               std::abs(r(k + 2)) * rho});
+            }
+          beta -= r(r.size() - 1);
+          if (step <= tolerance * scale &&
+              std::abs(r(r.size() - 1)) <= tolerance * std::abs(beta) &&
+              move <= tolerance * std::abs(beta) * rho)
+            return it;
+        }
+      AssertThrow(false,
+                  dealii::ExcMessage(
+                    "reduced model: the Newton iteration of the load "
+                    "distribution on crank bearings did not converge in " +
+                    std::to_string(max_iterations) +
+                    " iterations (Analytic/Maximum iterations)."));
+      return max_iterations;
+    }
+
+
+
+    std::vector<unsigned int>
+    ComplementaritySolver::next_supported_set(
+      const std::vector<unsigned int>        &active,
+      const std::vector<double>              &F,
+      const std::vector<support::DiscMotion> &q) const
+    {
+      const unsigned int        n = pairs.size();
+      std::vector<unsigned int> next;
+      std::vector<bool>         is_active(n, false);
+      for (const unsigned int i : active)
+        is_active[i] = true;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          if (is_active[i])
+            {
+              if (F[i] > 0)
+                next.push_back(i);
+              continue;
+            }
+          const unsigned int d = pairs[i].disc;
+          double gap = rigid_gap(i, q[d].rotation).first -
+                       pairs[i].normal * q[d].translation;
+          for (const unsigned int j : active)
+            gap += C(i, j) * F[j];
+          if (gap < 0)
+            next.push_back(i);
+        }
+      return next;
+    }
+
+
+
+    ReducedSolution
+    ComplementaritySolver::solve_supported(const double torque,
+                                           const double beta_guess) const
+    {
+      const unsigned int n  = pairs.size();
+      const unsigned int nd = supports->n_discs();
+      ReducedSolution    s;
+      s.force.assign(n, 0.);
+      s.compliance.assign(n, 0.);
+      s.rotation = beta_guess;
+      s.motions.assign(nd, {});
+      for (auto &q : s.motions)
+        q.rotation = beta_guess;
+      if (torque == 0 || n == 0)
+        return s;
+      double arms = 0;
+      for (const ContactPair &p : pairs)
+        arms += std::abs(p.arm);
+      const double floor         = 1e-9 * std::abs(torque) / arms;
+      const double bearing_floor = supports->stiffness_floor(torque);
+
+      std::vector<unsigned int> active = first_active_set(torque, beta_guess);
+      std::set<std::vector<unsigned int>> seen;
+      std::vector<double>                 F(n, 0.);
+      double                              active_arms = 0;
+      for (const unsigned int i : active)
+        active_arms += rigid_gap(i, beta_guess).second;
+      for (const unsigned int i : active)
+        F[i] = torque / active_arms;
+      while (true)
+        {
+          AssertThrow(seen.insert(active).second,
+                      dealii::ExcMessage(
+                        "reduced model: the active set of the load "
+                        "distribution on crank bearings cycles (a set "
+                        "repeated after " +
+                        std::to_string(seen.size()) + " sets)."));
+          s.iterations += supported_newton(
+            active, torque, floor, bearing_floor, F, s.motions, s.rotation);
+          ++s.active_sets;
+          const std::vector<unsigned int> next =
+            next_supported_set(active, F, s.motions);
+          if (next == active)
+            break;
+          for (unsigned int i = 0; i < n; ++i)
+            if (!std::binary_search(next.begin(), next.end(), i))
+              F[i] = 0;
+            else if (F[i] <= 0)
+              F[i] = floor;
+          active = next;
+          AssertThrow(!active.empty(),
+                      dealii::ExcMessage("reduced model: every contact left "
+                                         "the active set."));
+        }
+
+      // dT/dbeta: the system without the torque row, differentiated in
+      // beta, with the exact (unguarded) bearing stiffness.
+      dealii::Vector<double>     r;
+      dealii::FullMatrix<double> Jf;
+      supported_system(active,
+                       F,
+                       s.motions,
+                       s.rotation,
+                       torque,
+                       floor,
+                       1e-12 * bearing_floor,
+                       r,
+                       Jf);
+      const unsigned int               N = r.size() - 1;
+      dealii::LAPACKFullMatrix<double> J(N, N);
+      dealii::Vector<double>           x(N);
+      for (unsigned int a = 0; a < N; ++a)
+        {
+          for (unsigned int b = 0; b < N; ++b)
+            J(a, b) = Jf(a, b);
+          x(a) = -Jf(a, N);
+        }
+      J.compute_lu_factorization();
+      J.solve(x);
+      s.k_tangent = 0;
+      for (unsigned int a = 0; a < N; ++a)
+        s.k_tangent += Jf(N, a) * x(a);
+
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          s.force[i] = std::max(F[i], 0.);
+          s.compliance[i] =
+            C(i, i) + (s.force[i] > 0 ? slope(i, s.force[i], floor) : 0.);
+        }
+      s.bodies_work = C.matrix_norm_square(
+        dealii::Vector<double>(s.force.begin(), s.force.end()));
+      for (unsigned int d = 0; d < nd; ++d)
+        s.bearings_work += supports->work(d, s.motions[d], s.rotation);
+      return s;
+    }
+  } // namespace reduced
+} // namespace cycloid
