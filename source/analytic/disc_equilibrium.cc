@@ -1,11 +1,14 @@
 #include <deal.II/base/exceptions.h>
 
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/vector.h>
 
 #include <cycloid/analytic/load_distribution.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace cycloid
@@ -14,33 +17,18 @@ namespace cycloid
   {
     namespace
     {
-      /** The 3 x 3 block in (t_x, t_y, theta) of a 3 x 4 derivative. */
-      dealii::FullMatrix<double>
-      motion_block(const dealii::FullMatrix<double> &derivative)
+      /** The motions of the unknowns @p x. */
+      std::vector<support::DiscMotion>
+      motions_of(const dealii::Vector<double> &x)
       {
-        dealii::FullMatrix<double> J(3, 3);
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int b = 0; b < 3; ++b)
-            J(a, b) = derivative(a, b);
-        return J;
-      }
-
-      /** Force and moment scales of disc @p d's loads: the pins' force
-       * and moment sums plus the bearings' resultant. */
-      std::pair<double, double>
-      load_scales(const std::vector<PinLoad> &pins,
-                  const unsigned int          d,
-                  const double                bearing_force,
-                  const double                bearing_moment)
-      {
-        double f = bearing_force, m = std::abs(bearing_moment);
-        for (const PinLoad &p : pins)
-          if (p.contact.disc == d)
-            {
-              f += p.force;
-              m += p.force * std::abs(p.contact.arm);
-            }
-        return {f, m};
+        std::vector<support::DiscMotion> q((x.size() - 1) / 3);
+        for (unsigned int d = 0; d < q.size(); ++d)
+          {
+            q[d].translation[0] = x(3 * d);
+            q[d].translation[1] = x(3 * d + 1);
+            q[d].rotation       = x(3 * d + 2);
+          }
+        return q;
       }
     } // namespace
 
@@ -49,153 +37,313 @@ namespace cycloid
     DiscEquilibrium::DiscEquilibrium(const PairStiffnessModel     &model,
                                      const support::CrankSupports &supports,
                                      const double                  tolerance,
-                                     const unsigned int max_iterations,
-                                     const double       floor)
+                                     const unsigned int max_iterations)
       : model(model)
       , supports(supports)
-      , tolerance(std::max(tolerance, 1e-13))
+      , tolerance(std::max(tolerance, 1e-10))
       , max_iterations(max_iterations)
-      , floor(floor)
     {}
 
 
 
-    std::array<double, 3>
-    DiscEquilibrium::residual(const unsigned int          d,
-                              const support::DiscMotion  &q,
-                              const double                beta,
-                              const double                floor_now,
-                              std::vector<PinLoad>       &pins,
-                              dealii::FullMatrix<double> &derivative) const
+    void
+    DiscEquilibrium::system(const dealii::Vector<double> &x,
+                            const double                  torque,
+                            const double                  floor,
+                            std::vector<PinLoad>         &pins,
+                            dealii::Vector<double>       &r,
+                            dealii::FullMatrix<double>   &J) const
     {
-      const auto b = supports.resultant(d, q, beta, floor_now);
-      derivative   = b.derivative;
-      std::array<double, 3> r = b.value;
+      // The open pins get a guard with the bearings' (not in the final
+      // tangent, whose bearing guard is far smaller).
+      const double guarded = 1e-6 * supports.stiffness_floor(torque);
+      const unsigned int nd   = supports.n_discs();
+      const unsigned int tb   = 3 * nd; // the torque row, the beta column
+      const double       beta = x(tb);
+      const auto         q    = motions_of(x);
+      r.reinit(tb + 1);
+      J.reinit(tb + 1, tb + 1);
+      for (unsigned int d = 0; d < nd; ++d)
+        {
+          const auto b = supports.resultant(d, q[d], beta, floor);
+          for (unsigned int a = 0; a < 3; ++a)
+            {
+              r(3 * d + a) = b.value[a];
+              for (unsigned int c = 0; c < 3; ++c)
+                J(3 * d + a, 3 * d + c) = b.derivative(a, c);
+              J(3 * d + a, tb) = b.derivative(a, 3);
+            }
+        }
+      r(tb) = -torque;
       for (PinLoad &p : pins)
         {
-          if (p.contact.disc != d)
-            continue;
+          const unsigned int          d = p.contact.disc;
           const std::array<double, 3> v{
             {p.contact.normal[0], p.contact.normal[1], p.contact.arm}};
           const double c = std::max(p.contact.clearance, 0.);
-          p.approach     = std::max(
-            v[0] * q.translation[0] + v[1] * q.translation[1] +
-              q.rotation * v[2] - c,
-            0.);
-          p.force = model.force(p.approach, p.pair);
+          p.approach     = std::max(v[0] * x(3 * d) + v[1] * x(3 * d + 1) +
+                                  v[2] * x(3 * d + 2) - c,
+                                0.);
+          p.force        = model.force(p.approach, p.pair);
           p.stiffness =
             p.approach > 0 ? model.stiffness(p.approach, p.pair) : 0.;
-          // The pin pushes the disc back along -n, with moment -F l.
+          // An open pin on the loaded side, in the Jacobian only, as a
+          // thousandth of its stiffness at 1 um: else, with every pin
+          // just touching, nothing in the Jacobian carries the torque.
+          const double k =
+            p.approach > 0 || floor < guarded || v[2] * torque <= 0 ?
+              p.stiffness :
+              1e-3 * model.stiffness(1e-3, p.pair);
+          // The pin pushes its disc back along -n, with moment -F l, and
+          // its moment carries the torque.
           for (unsigned int a = 0; a < 3; ++a)
             {
-              r[a] -= p.force * v[a];
+              r(3 * d + a) -= p.force * v[a];
               for (unsigned int c2 = 0; c2 < 3; ++c2)
-                derivative(a, c2) -= p.stiffness * v[a] * v[c2];
+                J(3 * d + a, 3 * d + c2) -= k * v[a] * v[c2];
+              J(tb, 3 * d + a) += k * v[2] * v[a];
             }
+          r(tb) += p.force * v[2];
         }
-      return r;
     }
 
 
 
     void
-    DiscEquilibrium::solve_disc(const unsigned int    d,
-                                const double          beta,
-                                std::vector<PinLoad> &pins,
-                                support::DiscMotion  &q) const
+    DiscEquilibrium::gradient(const dealii::Vector<double> &x,
+                              const double                  torque,
+                              const double                  floor,
+                              std::vector<PinLoad>         &pins,
+                              dealii::Vector<double>       &g,
+                              dealii::FullMatrix<double>   &H) const
     {
-      dealii::FullMatrix<double> D(3, 4);
-      // A moment weighs as a force at the crank circle.
-      const double rho   = supports.crank_circle_radius();
-      const auto   merit = [rho](const std::array<double, 3> &r) {
-        return r[0] * r[0] + r[1] * r[1] + (r[2] / rho) * (r[2] / rho);
-      };
-      std::array<double, 3> r = residual(d, q, beta, floor, pins, D);
-      for (unsigned int it = 0; it < max_iterations; ++it)
+      const unsigned int nd = supports.n_discs();
+      const unsigned int tb = 3 * nd;
+      dealii::Vector<double>     r;
+      dealii::FullMatrix<double> J;
+      system(x, torque, floor, pins, r, J);
+      g.reinit(tb + 1);
+      H.reinit(tb + 1, tb + 1);
+      const auto q = motions_of(x);
+      for (unsigned int d = 0; d < nd; ++d)
         {
-          const auto bearing = supports.resultant(d, q, beta, 0.);
-          const auto [fs, ms] =
-            load_scales(pins,
-                        d,
-                        std::hypot(bearing.value[0], bearing.value[1]),
-                        bearing.value[2]);
-          if (std::hypot(r[0], r[1]) <= tolerance * fs &&
-              std::abs(r[2]) <= tolerance * ms)
-            return;
-          dealii::FullMatrix<double> J = motion_block(D);
-          J.gauss_jordan();
-          std::array<double, 3> dq{{0., 0., 0.}};
+          const auto b = supports.resultant(d, q[d], x(tb), floor);
           for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int b = 0; b < 3; ++b)
-              dq[a] -= J(a, b) * r[b];
-          // Backtrack while the residual grows: the energy is convex, but
-          // a roller or pin that opens or closes makes the step too long.
-          double              step = 1.;
-          support::DiscMotion trial;
-          std::array<double, 3> r_trial;
-          for (unsigned int k = 0; k < 40; ++k, step *= 0.5)
             {
-              trial             = q;
-              trial.translation[0] += step * dq[0];
-              trial.translation[1] += step * dq[1];
-              trial.rotation += step * dq[2];
-              r_trial = residual(d, trial, beta, floor, pins, D);
-              if (merit(r_trial) < merit(r))
-                break;
+              g(3 * d + a) = -r(3 * d + a);
+              for (unsigned int c = 0; c < 3; ++c)
+                H(3 * d + a, 3 * d + c) = -J(3 * d + a, 3 * d + c);
+              H(3 * d + a, tb) = -b.derivative(a, 3);
+              H(tb, 3 * d + a) = b.derivative(2, a);
             }
-          const double size = std::hypot(step * dq[0], step * dq[1]) +
-                              std::abs(step * dq[2]) * rho;
-          q = trial;
-          r = r_trial;
-          // Round-off: the step no longer moves the disc.
-          if (size <= 1e-15 * (q.translation.norm() + std::abs(q.rotation) * rho))
-            return;
+          g(tb) += b.value[2];
+          H(tb, tb) += b.derivative(2, 3);
         }
-      std::ostringstream msg;
-      msg << "crank bearings: disc " << d
-          << " found no equilibrium on its bearings in " << max_iterations
-          << " iterations (Analytic/Maximum iterations) at rotation " << beta
-          << " rad.";
-      AssertThrow(false, dealii::ExcMessage(msg.str()));
+      g(tb) -= torque;
     }
 
 
 
     double
-    DiscEquilibrium::torque_at(const double                      beta,
-                               std::vector<PinLoad>             &pins,
-                               std::vector<support::DiscMotion> &motions,
-                               double                           &slope) const
+    DiscEquilibrium::energy(const dealii::Vector<double> &x,
+                            const double                  torque,
+                            const std::vector<PinLoad>   &pins) const
     {
-      double torque = 0;
-      slope         = 0;
-      motions.resize(supports.n_discs());
-      for (unsigned int d = 0; d < supports.n_discs(); ++d)
+      // Gauss-Legendre on [0, a] for each pin's energy (its force law is
+      // smooth for a > 0).
+      static const double nodes[4]   = {0.0694318442029737,
+                                        0.3300094782075719,
+                                        0.6699905217924281,
+                                        0.9305681557970263};
+      static const double weights[4] = {0.1739274225687269,
+                                        0.3260725774312731,
+                                        0.3260725774312731,
+                                        0.1739274225687269};
+      const unsigned int  tb         = 3 * supports.n_discs();
+      const auto          q          = motions_of(x);
+      double              e          = -torque * x(tb);
+      for (unsigned int d = 0; d < q.size(); ++d)
+        e += supports.energy(d, q[d], x(tb));
+      for (const PinLoad &p : pins)
         {
-          support::DiscMotion &q = motions[d];
-          solve_disc(d, beta, pins, q);
-          // dq/dbeta = -J^-1 dR/dbeta with the exact (unfloored)
-          // stiffness, but for a guard far below round-off.
-          dealii::FullMatrix<double> D(3, 4);
-          residual(d, q, beta, 1e-12 * floor, pins, D);
-          dealii::FullMatrix<double> J = motion_block(D);
-          J.gauss_jordan();
-          std::array<double, 3> dq{{0., 0., 0.}};
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int b = 0; b < 3; ++b)
-              dq[a] -= J(a, b) * D(b, 3);
-          for (const PinLoad &p : pins)
-            if (p.contact.disc == d)
-              {
-                const double l = p.contact.arm;
-                torque += p.force * l;
-                slope += p.stiffness * l *
-                         (p.contact.normal[0] * dq[0] +
-                          p.contact.normal[1] * dq[1] + l * dq[2]);
-              }
+          const unsigned int d = p.contact.disc;
+          const double       a =
+            p.contact.normal[0] * x(3 * d) + p.contact.normal[1] * x(3 * d + 1) +
+            p.contact.arm * x(3 * d + 2) - std::max(p.contact.clearance, 0.);
+          if (a <= 0)
+            continue;
+          for (unsigned int k = 0; k < 4; ++k)
+            e += weights[k] * a * model.force(nodes[k] * a, p.pair);
         }
-      return torque;
+      return e;
     }
+
+
+
+    double
+    DiscEquilibrium::merit(const dealii::Vector<double> &r) const
+    {
+      const double rho = supports.crank_circle_radius();
+      double       m   = 0;
+      for (unsigned int k = 0; k < r.size(); ++k)
+        m += (k % 3 == 0 && k + 1 < r.size()) || k % 3 == 1 ?
+               r(k) * r(k) :
+               (r(k) / rho) * (r(k) / rho);
+      return m;
+    }
+
+
+
+    DiscEquilibrium::Solution
+    DiscEquilibrium::solve(const double                            torque,
+                           const double                            beta_guess,
+                           const std::vector<support::DiscMotion> &start,
+                           std::vector<PinLoad>                   &pins) const
+    {
+      const unsigned int     nd    = supports.n_discs();
+      const unsigned int     tb    = 3 * nd;
+      const double           floor = supports.stiffness_floor(torque);
+      dealii::Vector<double> x(tb + 1), r, trial;
+      for (unsigned int d = 0; d < nd; ++d)
+        {
+          x(3 * d)     = start.empty() ? 0. : start[d].translation[0];
+          x(3 * d + 1) = start.empty() ? 0. : start[d].translation[1];
+          x(3 * d + 2) = start.empty() ? beta_guess : start[d].rotation;
+        }
+      x(tb) = beta_guess;
+      dealii::FullMatrix<double> J;
+      system(x, torque, floor, pins, r, J);
+      Solution s;
+      // The largest residual: each disc's force and moment against its
+      // largest pin force and moment, the torque against itself.
+      const auto relative_residual = [&]() {
+        std::vector<double> fs(nd, 0.), ms(nd, 0.);
+        for (const PinLoad &p : pins)
+          {
+            fs[p.contact.disc] = std::max(fs[p.contact.disc], p.force);
+            ms[p.contact.disc] =
+              std::max(ms[p.contact.disc], p.force * std::abs(p.contact.arm));
+          }
+        double worst = std::abs(r(tb)) / std::abs(torque);
+        for (unsigned int d = 0; d < nd; ++d)
+          worst = std::max({worst,
+                            std::hypot(r(3 * d), r(3 * d + 1)) / fs[d],
+                            std::abs(r(3 * d + 2)) / ms[d]});
+        return worst;
+      };
+      bool   converged = false;
+      double previous  = std::numeric_limits<double>::max();
+      for (; s.iterations < max_iterations; ++s.iterations)
+        {
+          // Done, or no better than the last step where round-off rules
+          // (at a vanishing torque, the approaches are a few 1e-12 mm on
+          // positions of 1e-3 mm).
+          const double now = relative_residual();
+          if ((converged = now <= tolerance ||
+                           (now >= 0.5 * previous && now <= 1e-6)))
+            break;
+          previous = now;
+          // Newton on the energy (convex: pins and rollers are springs of
+          // non-decreasing force, minus the torque's work), its Hessian H
+          // the system's Jacobian with the torque row taken from the
+          // bearings' moments (equal to the pins' at equilibrium), which
+          // makes it symmetric. An Armijo line search on the energy then
+          // cannot stall where a pin or roller opens or closes.
+          dealii::Vector<double>     g;
+          dealii::FullMatrix<double> H;
+          gradient(x, torque, floor, pins, g, H);
+          dealii::LAPACKFullMatrix<double> L(tb + 1, tb + 1);
+          L = H;
+          L.compute_lu_factorization();
+          dealii::Vector<double> dx(g);
+          L.solve(dx);
+          dx *= -1.;
+          const double e0    = energy(x, torque, pins);
+          const double slope = g * dx;
+          double       step  = 1.;
+          bool         moved = false;
+
+
+
+
+          for (unsigned int k = 0; k < 50; ++k, step *= 0.5)
+            {
+              trial = x;
+              trial.add(step, dx);
+              // Near the minimum the energy's change is below its
+              // round-off: then a smaller residual decides.
+              dealii::Vector<double>     r_trial;
+              dealii::FullMatrix<double> J_trial;
+              if (energy(trial, torque, pins) <= e0 + 1e-4 * step * slope ||
+                  (system(trial, torque, floor, pins, r_trial, J_trial),
+                   merit(r_trial) < merit(r)))
+                {
+                  moved = true;
+                  break;
+                }
+            }
+          // Round-off: the energy cannot tell the step from none, so the
+          // residual is as small as it gets.
+          if (!moved || trial == x)
+            {
+              converged = relative_residual() <= 1e-6;
+              break;
+            }
+          x = trial;
+          system(x, torque, floor, pins, r, J);
+        }
+      AssertThrow(converged,
+                  dealii::ExcMessage(
+                    "crank bearings: the discs found no equilibrium on "
+                    "their bearings in " +
+                    std::to_string(max_iterations) +
+                    " iterations (Analytic/Maximum iterations)."));
+      // dT/dbeta: the discs' equilibrium differentiated in beta, with the
+      // exact stiffness (open pins none, a bearing with no roller loaded a
+      // guard far below round-off).
+      system(x, torque, 1e-12 * floor, pins, r, J);
+      dealii::LAPACKFullMatrix<double> K(tb, tb);
+      dealii::Vector<double>           dq(tb);
+      for (unsigned int a = 0; a < tb; ++a)
+        {
+          for (unsigned int b = 0; b < tb; ++b)
+            K(a, b) = J(a, b);
+          dq(a) = -J(a, tb);
+        }
+      K.compute_lu_factorization();
+      K.solve(dq);
+      for (unsigned int a = 0; a < tb; ++a)
+        s.slope += J(tb, a) * dq(a);
+      s.rotation = x(tb);
+      s.motions  = motions_of(x);
+      return s;
+    }
+
+
+
+    namespace
+    {
+      /** The rotation and motions of the limit T -> 0 from solution @p s
+       * at torque @p torque [N mm]: the torque divided by ten until it is
+       * 1e-3 N mm (1e-6 N m), each solve from the last. There a roller
+       * carries some 1e-5 N and is compressed by some 1e-9 mm, so the
+       * last is the take-up to about 1e-7 of it; and no solve starts from
+       * discs floating in their clearances, where the iteration would
+       * stall. */
+      DiscEquilibrium::Solution
+      vanishing_torque(const DiscEquilibrium      &eq,
+                       DiscEquilibrium::Solution   s,
+                       double                      torque,
+                       std::vector<PinLoad>        pins)
+      {
+        while (std::abs(torque) > 1.0001e-3)
+          {
+            torque *= 0.1;
+            s = eq.solve(torque, s.rotation, s.motions, pins);
+          }
+        return s;
+      }
+    } // namespace
 
 
 
@@ -206,45 +354,26 @@ namespace cycloid
       const support::CrankSupports &supports) const
     {
       LoadState state = zero_torque_limit(pins, side);
-      if (supports.bearing().size().clearance == 0)
+      state.motions.assign(supports.n_discs(), {});
+      for (auto &q : state.motions)
+        q.rotation = state.rotation;
+      if (supports.bearing().size().clearance > 0)
         {
-          state.motions.assign(supports.n_discs(), {});
-          for (auto &q : state.motions)
-            q.rotation = state.rotation;
-        }
-      else
-        {
-          // The pins' take-up is a lower bound (the disc in its kinematic
-          // place just touches); the bearings' clearance lets the discs
-          // give way further. The largest rotation with no torque, by
-          // bisection of T(beta) (non-decreasing).
-          const DiscEquilibrium eq(model,
-                                   supports,
-                                   tolerance,
-                                   max_iterations,
-                                   supports.stiffness_floor(1.));
-          std::vector<support::DiscMotion> q;
-          double                           slope = 0;
-          const auto                       loaded = [&](const double x) {
-            q.assign(supports.n_discs(), {});
-            for (auto &m : q)
-              m.rotation = side * x;
-            return side * eq.torque_at(side * x, state.pins, q, slope) > 1e-6;
-          };
-          double lo = side * state.rotation, step = 1e-6, hi = lo + step;
-          while (!loaded(hi))
-            {
-              lo = hi;
-              hi += (step *= 2.);
-            }
-          for (unsigned int k = 0; k < 60 && hi - lo > 1e-15 * hi; ++k)
-            (loaded(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
-          state.rotation = state.takeup = side * lo;
-          loaded(lo);
-          state.motions = q;
+          // The pins' take-up is where the discs in their kinematic place
+          // touch; the bearings' clearance lets them give way further: the
+          // limit from 1 N m down.
+          const double          T = side * 1e3;
+          const DiscEquilibrium eq(model, supports, tolerance, max_iterations);
+          std::vector<PinLoad>  loaded = pins;
+          const double rigid = LoadDistribution::solve(pins, side * 1., 0.).rotation;
+          const auto   s     = vanishing_torque(
+            eq, eq.solve(T, rigid, {}, loaded), T, pins);
+          state.rotation = state.takeup = s.rotation;
+          state.motions                 = s.motions;
         }
       for (unsigned int d = 0; d < supports.n_discs(); ++d)
-        for (const auto &b : supports.states(d, state.motions[d], state.rotation))
+        for (const auto &b :
+             supports.states(d, state.motions[d], state.rotation))
           state.bearings.push_back(b);
       return state;
     }
@@ -257,47 +386,38 @@ namespace cycloid
                             const double                   beta_guess,
                             const support::CrankSupports &supports) const
     {
-      const double sign = torque >= 0 ? 1. : -1.;
-      LoadState    state =
-        zero_torque_limit(pins_in, static_cast<int>(sign), supports);
-      state.torque          = torque;
-      state.reaction_torque = 0;
       if (torque == 0)
-        return state;
-      const double          target = torque * 1e3; // N m -> N mm
-      const DiscEquilibrium eq(model,
-                               supports,
-                               tolerance,
-                               max_iterations,
-                               supports.stiffness_floor(target));
-      std::vector<support::DiscMotion> q = state.motions;
-      const auto torque_of = [&](const double beta, double &dg) {
-        return eq.torque_at(beta, state.pins, q, dg);
-      };
-      double       dg = 0;
-      const double x  = carrying_rotation(torque_of,
-                                         std::abs(target),
-                                         sign,
-                                         sign * state.takeup,
-                                         beta_guess,
-                                         dg,
-                                         state.iterations);
-      const double t        = torque_of(sign * x, dg);
-      state.rotation        = sign * x;
-      state.reaction_torque = t * 1e-3;
-      state.k_tangent       = dg * 1e-3;
-      state.motions         = q;
+        return zero_torque_limit(pins_in, 1, supports);
+      const double sign = torque >= 0 ? 1. : -1.;
+      // Start from the rigid stage's rotation (the bearings only add to
+      // it) unless a larger guess is given.
+      LoadState    state = LoadDistribution::solve(pins_in, torque, 0.);
+      const double start =
+        sign * beta_guess > sign * state.rotation ? beta_guess : state.rotation;
+      const DiscEquilibrium eq(model, supports, tolerance, max_iterations);
+      const auto s = eq.solve(torque * 1e3, start, {}, state.pins);
+      if (supports.bearing().size().clearance > 0)
+        state.takeup =
+          vanishing_torque(eq, s, torque * 1e3, pins_in).rotation;
+      state.rotation        = s.rotation;
+      state.k_tangent       = s.slope * 1e-3;
+      state.iterations      = s.iterations;
+      state.motions         = s.motions;
       state.pins_in_contact = 0;
+      double t              = 0;
       for (const PinLoad &p : state.pins)
-        if (p.force > 0)
-          ++state.pins_in_contact;
-      state.bearings.clear();
-      double work = 0;
+        {
+          t += p.force * p.contact.arm;
+          if (p.force > 0)
+            ++state.pins_in_contact;
+        }
+      state.reaction_torque = t * 1e-3;
+      double work           = 0;
       for (unsigned int d = 0; d < supports.n_discs(); ++d)
         {
-          for (const auto &b : supports.states(d, q[d], state.rotation))
+          for (const auto &b : supports.states(d, s.motions[d], s.rotation))
             state.bearings.push_back(b);
-          work += supports.work(d, q[d], state.rotation);
+          work += supports.work(d, s.motions[d], s.rotation);
         }
       // Each part's share of the output work T beta, over T.
       state.breakdown.bodies   = 0;

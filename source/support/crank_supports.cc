@@ -137,6 +137,19 @@ namespace cycloid
 
 
     double
+    CrankSupports::energy(const unsigned int d,
+                          const DiscMotion  &motion,
+                          const double       beta) const
+    {
+      double e = 0;
+      for (unsigned int j = 0; j < arms[d].size(); ++j)
+        e += law.energy(deflection(d, j, motion, beta), cage[d]);
+      return e;
+    }
+
+
+
+    double
     CrankSupports::stiffness_floor(const double torque) const
     {
       const double arm = arms[0][0].norm();

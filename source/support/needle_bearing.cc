@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace cycloid
 {
@@ -57,12 +58,33 @@ namespace cycloid
 
 
 
+    double
+    NeedleBearing::energy(const dealii::Tensor<1, 2> &d,
+                          const double                cage) const
+    {
+      // Q = a s^p: its integral is Q s / (p + 1).
+      double e = 0;
+      for (unsigned int k = 0; k < dims.n_rollers; ++k)
+        {
+          const double phi = cage + 2. * dealii::numbers::PI * k / dims.n_rollers;
+          const double s   = -(d[0] * std::cos(phi) + d[1] * std::sin(phi)) -
+                           dims.clearance;
+          e += roller_load(s, dims.roller_length) * std::max(s, 0.) /
+               (1. / load_exp + 1.);
+        }
+      return e;
+    }
+
+
+
     NeedleBearing::Response
     NeedleBearing::response(const dealii::Tensor<1, 2> &d,
                             const double                cage,
                             const double                floor) const
     {
-      Response r;
+      Response             r;
+      std::vector<double>  stiffness(dims.n_rollers);
+      std::vector<dealii::Tensor<1, 2>> direction(dims.n_rollers);
       for (unsigned int k = 0; k < dims.n_rollers; ++k)
         {
           const double phi = cage + 2. * dealii::numbers::PI * k / dims.n_rollers;
@@ -75,9 +97,15 @@ namespace cycloid
               ++r.rollers_loaded;
               r.max_roller_load = std::max(r.max_roller_load, q);
             }
-          const double k_s = std::max(roller_stiffness_at(q), floor);
-          r.stiffness -= k_s * dealii::outer_product(u, u);
+          stiffness[k] = roller_stiffness_at(q);
+          direction[k] = u;
         }
+      // The guard only where no roller carries: a loaded bearing has its
+      // own stiffness, and a guard there would slow a disc that floats
+      // (its loads vanishing) to a linear convergence.
+      for (unsigned int k = 0; k < dims.n_rollers; ++k)
+        r.stiffness -= (r.rollers_loaded > 0 ? stiffness[k] : floor) *
+                       dealii::outer_product(direction[k], direction[k]);
       return r;
     }
   } // namespace support

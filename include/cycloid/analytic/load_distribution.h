@@ -5,6 +5,9 @@
 #include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/support/crank_supports.h>
 
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
 #include <array>
 #include <functional>
 #include <vector>
@@ -158,13 +161,16 @@ namespace cycloid
     };
 
     /**
-     * @brief Each disc in equilibrium on its crank bearings at a rotation
-     * beta of the eccentrics: the disc motion q = (t, theta) such that its
-     * pins, F_i = F(n_i . t + theta l_i - c_i), and its bearings
-     * (support::CrankSupports) balance in force and moment. The energy is
-     * convex in q, so a Newton iteration with a backtracking line search
-     * finds it; the torque T(beta) = sum F_i l_i it gives is
-     * non-decreasing in beta, with dT/dbeta from the implicit function.
+     * @brief The stage on its crank bearings: the rotation beta of the
+     * eccentrics and each disc's motion q_d = (t_d, theta_d) such that each
+     * disc's pins, F_i = F(n_i . t_d + theta_d l_i - c_i), and its bearings
+     * (support::CrankSupports) balance in force and moment, and the pins
+     * carry the torque, sum F_i l_i = T. One Newton iteration over all
+     * 3 n_discs + 1 unknowns with a backtracking line search: with the
+     * torque imposed the forces never all vanish, so no state floats in
+     * its clearances (a rotation imposed instead would leave a disc free
+     * in them, and the iteration slow), and the laws being powers of the
+     * approach, the iteration converges alike at any load.
      */
     class DiscEquilibrium
     {
@@ -173,42 +179,70 @@ namespace cycloid
       DiscEquilibrium(const PairStiffnessModel     &model,
                       const support::CrankSupports &supports,
                       const double                  tolerance,
-                      const unsigned int            max_iterations,
-                      const double                  floor);
+                      const unsigned int            max_iterations);
 
-      /** The torque [N mm] at rotation @p beta [rad], its slope @p slope
-       * [N mm/rad]; @p pins' forces and @p motions (the warm start, one per
-       * disc) at equilibrium. */
-      double
-      torque_at(const double                      beta,
-                std::vector<PinLoad>             &pins,
-                std::vector<support::DiscMotion> &motions,
-                double                           &slope) const;
+      /** The solution for torque @p torque [N mm]. */
+      struct Solution
+      {
+        /** Rotation beta [rad]. */
+        double rotation = 0;
+        /** dT/dbeta [N mm/rad]. */
+        double slope = 0;
+        /** Each disc's motion. */
+        std::vector<support::DiscMotion> motions;
+        /** Newton iterations. */
+        unsigned int iterations = 0;
+      };
+
+      /** Solve for @p torque [N mm] from rotation @p beta_guess [rad] and
+       * the disc motions @p start (empty: each disc turned by
+       * @p beta_guess); @p pins' forces at the solution. Throws if it does
+       * not converge. */
+      Solution
+      solve(const double                            torque,
+            const double                            beta_guess,
+            const std::vector<support::DiscMotion> &start,
+            std::vector<PinLoad>                   &pins) const;
 
     private:
-      /** Residual (force, moment of pins and bearings on disc @p d) and
-       * its 3 x 4 derivative in (t_x, t_y, theta, beta), @p pins' forces
-       * filled; bearings at least @p floor stiff per roller. */
-      std::array<double, 3>
-      residual(const unsigned int          d,
-               const support::DiscMotion  &q,
-               const double                beta,
-               const double                floor,
-               std::vector<PinLoad>       &pins,
-               dealii::FullMatrix<double> &derivative) const;
-
-      /** Newton for disc @p d, @p q in place; throws if it fails. */
+      /** Residual (each disc's force and moment, the torque) and
+       * Jacobian in ((t_x, t_y, theta) per disc, beta) at @p x; @p pins'
+       * forces filled; bearings with none loaded @p floor stiff per
+       * roller. */
       void
-      solve_disc(const unsigned int    d,
-                 const double          beta,
-                 std::vector<PinLoad> &pins,
-                 support::DiscMotion  &q) const;
+      system(const dealii::Vector<double> &x,
+             const double                  torque,
+             const double                  floor,
+             std::vector<PinLoad>         &pins,
+             dealii::Vector<double>       &r,
+             dealii::FullMatrix<double>   &J) const;
+
+      /** The residual's size, a moment counted as a force at the crank
+       * circle. */
+      double
+      merit(const dealii::Vector<double> &r) const;
+
+      /** The gradient @p g and Hessian @p H of energy() at @p x (the
+       * Hessian guarded as system()'s Jacobian is). */
+      void
+      gradient(const dealii::Vector<double> &x,
+               const double                  torque,
+               const double                  floor,
+               std::vector<PinLoad>         &pins,
+               dealii::Vector<double>       &g,
+               dealii::FullMatrix<double>   &H) const;
+
+      /** The energy of pins and bearings minus the torque's work T beta
+       * at @p x [N mm]: the solution is its minimum. */
+      double
+      energy(const dealii::Vector<double> &x,
+             const double                  torque,
+             const std::vector<PinLoad>   &pins) const;
 
       const PairStiffnessModel     &model;
       const support::CrankSupports &supports;
       const double                  tolerance;
       const unsigned int            max_iterations;
-      const double                  floor;
     };
   } // namespace analytic
 } // namespace cycloid

@@ -84,6 +84,12 @@ namespace cycloid
            const DiscMotion  &motion,
            const double       beta) const;
 
+      /** The elastic energy of disc @p d's bearings [N mm]. */
+      double
+      energy(const unsigned int d,
+             const DiscMotion  &motion,
+             const double       beta) const;
+
       /** A roller stiffness [N/mm] for Newton iterations at torque
        * @p torque [N mm]: a hundredth of a roller's stiffness when the
        * torque's crank forces are shared out, small against every loaded

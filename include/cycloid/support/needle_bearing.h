@@ -41,15 +41,20 @@ namespace cycloid
 
       /**
        * The response to deflection @p d [mm] (the crank hole's centre
-       * against its eccentric's) with the cage at @p cage [rad]. Each
-       * roller's stiffness is at least @p floor [N/mm] in `stiffness`
-       * only (a Newton iteration's guard against a bearing with no roller
-       * loaded; the force is exact).
+       * against its eccentric's) with the cage at @p cage [rad]. Where no
+       * roller carries, each has stiffness @p floor [N/mm] in `stiffness`
+       * (a Newton iteration's guard against a bearing that holds nothing;
+       * the force is exact).
        */
       Response
       response(const dealii::Tensor<1, 2> &d,
                const double                cage,
                const double                floor = 0) const;
+
+      /** The rollers' elastic energy at deflection @p d [mm] with the cage
+       * at @p cage [rad] [N mm]: its derivative is minus the force. */
+      double
+      energy(const dealii::Tensor<1, 2> &d, const double cage) const;
 
       /** Approach of one roller's two raceways at load @p q [N] on
        * length @p length [mm] (Palmgren) [mm]. */
