@@ -87,13 +87,13 @@ namespace cycloid
           p.force        = model.force(p.approach, p.pair);
           p.stiffness =
             p.approach > 0 ? model.stiffness(p.approach, p.pair) : 0.;
-          // An open pin on the loaded side, in the Jacobian only, as a
-          // thousandth of its stiffness at 1 um: else, with every pin
-          // just touching, nothing in the Jacobian carries the torque.
+          // An open pin on the loaded side, in the Jacobian only, as stiff
+          // as a bearing's guard: else, with every pin just touching,
+          // nothing in the Jacobian carries the torque.
           const double k =
             p.approach > 0 || floor < guarded || v[2] * torque <= 0 ?
               p.stiffness :
-              1e-3 * model.stiffness(1e-3, p.pair);
+              floor;
           // The pin pushes its disc back along -n, with moment -F l, and
           // its moment carries the torque.
           for (unsigned int a = 0; a < 3; ++a)
@@ -262,6 +262,7 @@ namespace cycloid
           const double slope = g * dx;
           double       step  = 1.;
           bool         moved = false;
+
 
 
 

@@ -152,12 +152,17 @@ namespace cycloid
     double
     CrankSupports::stiffness_floor(const double torque) const
     {
+      // A roller's share of the torque's crank forces, over how far a
+      // roller moves before and while it carries it: the secant stiffness
+      // at that load, across the clearance.
       const double arm = arms[0][0].norm();
       const double per_roller =
-        std::abs(torque) /
+        std::max(std::abs(torque), 1e-12) /
         (arm * arms.size() * arms[0].size() * law.size().n_rollers);
-      return 1e-2 *
-             law.roller_stiffness_at(std::max(per_roller, 1e-12));
+      return 1e-2 * per_roller /
+             (law.size().clearance +
+              NeedleBearing::roller_approach(per_roller,
+                                             law.size().roller_length));
     }
   } // namespace support
 } // namespace cycloid

@@ -91,10 +91,12 @@ namespace cycloid
              const double       beta) const;
 
       /** A roller stiffness [N/mm] for Newton iterations at torque
-       * @p torque [N mm]: a hundredth of a roller's stiffness when the
-       * torque's crank forces are shared out, small against every loaded
-       * roller and large enough that a bearing with none loaded takes a
-       * step of the right size. */
+       * @p torque [N mm]: a hundredth of a roller's secant stiffness, its
+       * share of the torque's crank forces over the clearance plus its
+       * approach under it. Small against every loaded roller, it lets a
+       * bearing with none loaded (or a disc with no pin loaded) take steps
+       * of the clearance's size; proportional to the torque, it never
+       * outweighs the forces of a small one. */
       double
       stiffness_floor(const double torque) const;
 
