@@ -30,6 +30,38 @@ namespace cycloid
           }
         return q;
       }
+      /** @p rhs := @p A^-1 @p rhs; a matrix singular to LAPACK (a disc
+       * free in some direction: a bearing with one roller loaded and its
+       * pins open) gets a diagonal of 1e-10 times its largest, then more. */
+      void
+      guarded_solve(const dealii::FullMatrix<double> &A,
+                    dealii::Vector<double>           &rhs)
+      {
+        double scale = 0;
+        for (unsigned int i = 0; i < A.m(); ++i)
+          scale = std::max(scale, std::abs(A(i, i)));
+        for (double shift = 0;; shift = shift == 0 ? 1e-10 * scale : 100 * shift)
+          {
+            dealii::LAPACKFullMatrix<double> L(A.m(), A.n());
+            L = A;
+            for (unsigned int i = 0; i < A.m(); ++i)
+              L(i, i) += (A(i, i) < 0 ? -shift : shift);
+            try
+              {
+                L.compute_lu_factorization();
+              }
+            catch (const dealii::ExceptionBase &)
+              {
+                AssertThrow(shift < scale,
+                            dealii::ExcMessage(
+                              "crank bearings: the discs' equilibrium is "
+                              "singular (a disc free to move)."));
+                continue;
+              }
+            L.solve(rhs);
+            return;
+          }
+      }
     } // namespace
 
 
@@ -214,21 +246,22 @@ namespace cycloid
       dealii::FullMatrix<double> J;
       system(x, torque, floor, pins, r, J);
       Solution s;
-      // The largest residual: each disc's force and moment against its
-      // largest pin force and moment, the torque against itself.
+      // The largest residual: each disc's force and moment against the
+      // largest pin force and moment of the stage (a disc may carry
+      // nothing: at a small torque on clearances, one disc can float while
+      // the other carries), the torque against itself.
       const auto relative_residual = [&]() {
-        std::vector<double> fs(nd, 0.), ms(nd, 0.);
+        double fs = 0, ms = 0;
         for (const PinLoad &p : pins)
           {
-            fs[p.contact.disc] = std::max(fs[p.contact.disc], p.force);
-            ms[p.contact.disc] =
-              std::max(ms[p.contact.disc], p.force * std::abs(p.contact.arm));
+            fs = std::max(fs, p.force);
+            ms = std::max(ms, p.force * std::abs(p.contact.arm));
           }
         double worst = std::abs(r(tb)) / std::abs(torque);
         for (unsigned int d = 0; d < nd; ++d)
           worst = std::max({worst,
-                            std::hypot(r(3 * d), r(3 * d + 1)) / fs[d],
-                            std::abs(r(3 * d + 2)) / ms[d]});
+                            std::hypot(r(3 * d), r(3 * d + 1)) / fs,
+                            std::abs(r(3 * d + 2)) / ms});
         return worst;
       };
       bool   converged = false;
@@ -252,11 +285,8 @@ namespace cycloid
           dealii::Vector<double>     g;
           dealii::FullMatrix<double> H;
           gradient(x, torque, floor, pins, g, H);
-          dealii::LAPACKFullMatrix<double> L(tb + 1, tb + 1);
-          L = H;
-          L.compute_lu_factorization();
           dealii::Vector<double> dx(g);
-          L.solve(dx);
+          guarded_solve(H, dx);
           dx *= -1.;
           const double e0    = energy(x, torque, pins);
           const double slope = g * dx;
@@ -303,16 +333,15 @@ namespace cycloid
       // exact stiffness (open pins none, a bearing with no roller loaded a
       // guard far below round-off).
       system(x, torque, 1e-12 * floor, pins, r, J);
-      dealii::LAPACKFullMatrix<double> K(tb, tb);
-      dealii::Vector<double>           dq(tb);
+      dealii::FullMatrix<double> K(tb, tb);
+      dealii::Vector<double>     dq(tb);
       for (unsigned int a = 0; a < tb; ++a)
         {
           for (unsigned int b = 0; b < tb; ++b)
             K(a, b) = J(a, b);
           dq(a) = -J(a, tb);
         }
-      K.compute_lu_factorization();
-      K.solve(dq);
+      guarded_solve(K, dq);
       for (unsigned int a = 0; a < tb; ++a)
         s.slope += J(tb, a) * dq(a);
       s.rotation = x(tb);

@@ -560,8 +560,12 @@ namespace cycloid
                    << c.crank * u::deg_per_rad << ','
                    << c.lost_motion_clearance_arcmin << ','
                    << c.lost_motion_elastic_arcmin << '\n';
-          std::cout << "  catalogue figures of the cycloid-pin stage alone "
-                       "(no bearings or shafts), crank "
+          std::cout << (options.bearings ?
+                         "  catalogue figures of the cycloid-pin stage on "
+                         "its crank needle bearings (no shafts, main "
+                         "bearings or carrier), crank " :
+                         "  catalogue figures of the cycloid-pin stage alone "
+                         "(no bearings or shafts), crank ")
                     << c.crank * u::deg_per_rad << " deg, rated torque "
                     << c.rated_torque << " N m: torsional rigidity "
                     << c.rigidity_Nm_per_arcmin << " N m/arcmin, lost motion "
