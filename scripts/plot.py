@@ -31,7 +31,11 @@ writes into OUTPUT_DIR/plots/, each figure only when its data exist:
                          nominal stage marked (samples.csv);
 * pin_force_spread.png   a tolerance study's spread of each pin's force: a
                          box per pin (P5-P95, median, min-max whiskers) and
-                         the nominal stage's force (pin_force_summary.csv).
+                         the nominal stage's force (pin_force_summary.csv);
+* compliance_breakdown.png  each loaded state's rotation stacked from its
+                         parts: pin contacts, elastic bodies, crank
+                         bearings (compliance_breakdown.csv), the bearings'
+                         share in the legend.
 
 It also writes plots/index.json: per figure its file, title, and per panel
 the title, axis labels and the curves drawn (label, number of points), read
@@ -55,7 +59,8 @@ from cycloid_tools import parameter_values, read_csv  # noqa: E402
 ARCSEC_PER_RAD = 180.0 * 3600.0 / math.pi
 ARCMIN_PER_RAD = 180.0 * 60.0 / math.pi
 KNOWN_FILES = ("stiffness.csv", "pin_forces.csv", "fluctuation.csv",
-               "energy.csv", "torsion_curve.csv", "rigidity.csv", "samples.csv")
+               "energy.csv", "torsion_curve.csv", "rigidity.csv", "samples.csv",
+               "compliance_breakdown.csv")
 DISC_STYLE = [dict(color="tab:blue", marker="o"),
               dict(color="tab:orange", marker="s"),
               dict(color="tab:green", marker="^")]
@@ -140,6 +145,7 @@ class Run:
         # A tolerance study: every sample's states, and each pin's spread.
         self.samples = read_columns(os.path.join(directory, "samples.csv"))
         self.pin_spread = read_columns(os.path.join(directory, "pin_force_summary.csv"))
+        self.breakdown = read_columns(os.path.join(directory, "compliance_breakdown.csv"))
         self.transient = self.energy is not None or self.prm.get("Run") == "transient"
         self.by_rotation = self._rotation_control()
         # A torque cycle passes each torque twice at a crank angle (loading
@@ -760,6 +766,45 @@ def pin_force_spread(run):
     return fig
 
 
+# --- compliance breakdown -------------------------------------------------------
+
+BREAKDOWN_PARTS = [("contacts_rad", "pin contacts", "tab:blue"),
+                   ("bodies_rad", "elastic bodies", "tab:green"),
+                   ("bearings_rad", "crank bearings", "tab:red")]
+
+
+def compliance_breakdown(run):
+    """Each loaded state's rotation as stacked bars of its parts [µrad]
+    (magnitudes: a negative torque's parts are all negative)."""
+    b = run.breakdown
+    if b is None:
+        return None
+    sel = np.isfinite(b["total_rad"]) & (b["torque_Nm"] != 0)
+    if not sel.any():
+        return None
+    n = int(sel.sum())
+    x = np.arange(n)
+    fig, ax = plt.subplots(figsize=(max(10.0, 0.6 * n + 6), 5), layout="constrained")
+    bottom = np.zeros(n)
+    total = np.abs(b["total_rad"][sel]) * 1e6
+    for column, label, color in BREAKDOWN_PARTS:
+        part = np.abs(b[column][sel]) * 1e6
+        share = part / total
+        ax.bar(x, part, bottom=bottom, color=color, width=0.6,
+               label=f"{label}: {fmt(100 * share.min(), 3)} to {fmt(100 * share.max(), 3)} % of β")
+        bottom += part
+    ax.plot(x, total, ls="", marker="_", ms=14, color="k", label="total β")
+    ax.set_xticks(x)
+    ax.set_xticklabels([f"{fmt(t)} N·m\nψ {fmt(c)}°" for t, c in
+                        zip(b["torque_Nm"][sel], b["crank_deg"][sel])], fontsize=7)
+    ax.set_xlabel("state (torque [N·m], crank angle [°])")
+    ax.set_ylabel("|β| and its parts [µrad]")
+    ax.set_title("where the output rotation comes from: each part's share of the work T β")
+    _legend_outside(ax)
+    fig.suptitle(run.title("Compliance breakdown"))
+    return fig
+
+
 # --- index and main ------------------------------------------------------------
 
 def describe(fig, filename):
@@ -785,6 +830,10 @@ def describe(fig, filename):
             if not coll.get_label().startswith("_"):
                 panel["curves"].append({"label": coll.get_label(), "kind": "band",
                                         "points": len(coll.get_paths()), "axis": side})
+        for bars in ax.containers:
+            if not bars.get_label().startswith("_"):
+                panel["curves"].append({"label": bars.get_label(), "kind": "bars",
+                                        "points": len(bars), "axis": side})
     title = fig._suptitle.get_text() if fig._suptitle else ""
     entry = {"file": filename, "title": title, "panels": panels}
     if hasattr(fig, "index_state"):  # the step of the per-pin figures
@@ -800,7 +849,8 @@ FIGURES = [("pin_forces_polar.png", pin_forces_polar),
            ("contact_pressure.png", contact_pressure),
            ("energy.png", energy),
            ("tolerance_distributions.png", tolerance_distributions),
-           ("pin_force_spread.png", pin_force_spread)]
+           ("pin_force_spread.png", pin_force_spread),
+           ("compliance_breakdown.png", compliance_breakdown)]
 
 
 def main(argv):

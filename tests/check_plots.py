@@ -83,6 +83,7 @@ class Data:
         self.e = columns(os.path.join(d, "energy.csv"))
         self.f = columns(os.path.join(d, "fluctuation.csv"))
         self.tc = columns(os.path.join(d, "torsion_curve.csv"))
+        self.bd = columns(os.path.join(d, "compliance_breakdown.csv"))
         self.rig = columns(os.path.join(d, "rigidity.csv"))
         self.transient = self.e is not None
         rotation = self.f is not None and "rotation_rad" in self.f
@@ -114,7 +115,15 @@ class Data:
             want |= {"energy.png", "transmission_error.png"}
         if self.tc:
             want.add("torsion_curve.png")
+        if self.bd and self.loaded_breakdown():
+            want.add("compliance_breakdown.png")
         return want
+
+    def loaded_breakdown(self):
+        """Rows of compliance_breakdown.csv with a torque and a finite
+        total."""
+        return [i for i, (t, b) in enumerate(zip(self.bd["torque_Nm"], self.bd["total_rad"]))
+                if t != 0 and math.isfinite(b)]
 
     def representative_step(self):
         s = self.s
@@ -234,6 +243,23 @@ def check_pressure(fig, data):
     check(len(fig["panels"]) == (2 if "max_shear_stress_MPa" in p else 1), "pressure: shear panel")
 
 
+def check_breakdown(fig, data):
+    """Three stacked parts and the total, a bar or point per loaded state;
+    the bearings' share in its label as the file gives it."""
+    n = len(data.loaded_breakdown())
+    curves = fig["panels"][0]["curves"]
+    kinds = sorted(c["kind"] for c in curves)
+    check(kinds == ["bars", "bars", "bars", "line"], f"breakdown: curves {kinds}")
+    check(all(c["points"] == n for c in curves),
+          f"breakdown: points {[c['points'] for c in curves]}, expected {n}")
+    rows = data.loaded_breakdown()
+    shares = [abs(data.bd["bearings_rad"][i] / data.bd["total_rad"][i]) for i in rows]
+    label = [c["label"] for c in curves if c["label"].startswith("crank bearings")]
+    check(label and number_after(label[0], "bearings:") is not None and
+          abs(number_after(label[0], "bearings:") - 100 * min(shares)) <= 0.05 + 1e-3 * 100 * min(shares),
+          f"breakdown: bearings label {label} against the smallest share {100 * min(shares):.3g} %")
+
+
 def check_directory(plot_sh, d):
     shutil.rmtree(os.path.join(d, "plots"), ignore_errors=True)
     r = subprocess.run([plot_sh, d], capture_output=True, text=True)
@@ -262,7 +288,8 @@ def check_directory(plot_sh, d):
               "stiffness_vs_torque.png": lambda f, x: check_stiffness(f, x, "torque"),
               "transmission_error.png": check_transmission_error,
               "energy.png": check_energy, "torsion_curve.png": check_torsion,
-              "contact_pressure.png": check_pressure}
+              "contact_pressure.png": check_pressure,
+              "compliance_breakdown.png": check_breakdown}
     for name, fig in figures.items():
         checks[name](fig, data)
     print(f"{d}: {', '.join(sorted(figures))}")

@@ -294,8 +294,14 @@ namespace cycloid
     {
       namespace u = results::units;
       // The analytical model gives the take-up and, for a first state, the
-      // first active set (its beta is smaller: it is stiffer).
-      analytic::LoadState load = model.solve(pins, torque, beta_guess, psi);
+      // first active set (its beta is smaller: it is stiffer). Bearings
+      // without clearance leave the take-up to the pins: the rigid
+      // supports' solve gives it at a third of the cost.
+      const auto          &b    = settings.stage.bearings;
+      analytic::LoadState  load =
+        b.needle() && b.radial_clearance == 0 ?
+          model.solve_on_rigid_supports(pins, torque, beta_guess) :
+          model.solve(pins, torque, beta_guess, psi);
       if (torque == 0)
         return load;
       const ReducedSolution s =

@@ -83,6 +83,17 @@ namespace cycloid
         return distribution.solve(pins, torque, beta_guess, supports(psi));
       }
 
+      /** solve() on rigid supports whatever `Crank bearings` says: the
+       * take-up and first active set of the reduced model when the
+       * bearings have no clearance (the take-up is then the pins'). */
+      LoadState
+      solve_on_rigid_supports(const std::vector<PinLoad> &pins,
+                              const double                torque,
+                              const double                beta_guess) const
+      {
+        return distribution.solve(pins, torque, beta_guess);
+      }
+
       /** The crank bearings at crank angle @p psi [rad] (Crank bearings =
        * needle). */
       support::CrankSupports
