@@ -82,10 +82,10 @@ namespace cycloid
      * The torque sum_i F_i(beta l_i - c_i) l_i is continuous and
      * non-decreasing in beta, so a bracket from the take-up rotation plus a
      * safeguarded Newton iteration (slope sum k_i l_i^2) converges for any
-     * pair model with non-decreasing F.
+     * pair model with non-decreasing F. On crank bearings the discs also
+     * translate and turn against them (solve() with a
+     * support::CrankSupports, DiscEquilibrium).
      */
-    class DiscEquilibrium;
-
     class LoadDistribution
     {
     public:
