@@ -222,27 +222,23 @@ namespace cycloid
 
 
 
-    ReducedSolution
-    ComplementaritySolver::solve(const double torque,
-                                 const double beta_guess) const
+    std::vector<unsigned int>
+    ComplementaritySolver::active_set_loop(
+      const double                                            torque,
+      const double                                            beta_guess,
+      const double                                            floor,
+      const std::function<unsigned int(const std::vector<unsigned int> &,
+                                       std::vector<double> &)> &newton_on,
+      const std::function<std::vector<unsigned int>(
+        const std::vector<unsigned int> &,
+        const std::vector<double> &)>                         &next_of,
+      std::vector<double>                                    &F,
+      ReducedSolution                                        &s) const
     {
-      if (supports)
-        return solve_supported(torque, beta_guess);
-      const unsigned int n = pairs.size();
-      ReducedSolution    s;
-      s.force.assign(n, 0.);
-      s.compliance.assign(n, 0.);
-      s.rotation = beta_guess;
-      if (torque == 0 || n == 0)
-        return s;
-      double arms = 0;
-      for (const ContactPair &p : pairs)
-        arms += std::abs(p.arm);
-      const double floor = 1e-9 * std::abs(torque) / arms;
-
+      const unsigned int        n      = pairs.size();
       std::vector<unsigned int> active = first_active_set(torque, beta_guess);
       std::set<std::vector<unsigned int>> seen;
-      std::vector<double>                 F(n, 0.);
+      F.assign(n, 0.);
       // Start from one force on every active contact that carries the
       // torque (not T / (n l_i): a contact at the root has l_i ~ 0).
       double active_arms = 0;
@@ -257,10 +253,9 @@ namespace cycloid
                         "reduced model: the active set of the load "
                         "distribution cycles (a set repeated after " +
                         std::to_string(seen.size()) + " sets)."));
-          s.iterations += newton(active, torque, floor, F, s.rotation);
+          s.iterations += newton_on(active, F);
           ++s.active_sets;
-          const std::vector<unsigned int> next =
-            next_active_set(active, F, s.rotation);
+          const std::vector<unsigned int> next = next_of(active, F);
           if (next == active)
             break;
           for (unsigned int i = 0; i < n; ++i)
@@ -273,15 +268,68 @@ namespace cycloid
                       dealii::ExcMessage("reduced model: every contact left "
                                          "the active set."));
         }
-      s.k_tangent = tangent_stiffness(active, F, floor, s.rotation);
-      for (unsigned int i = 0; i < n; ++i)
+      return active;
+    }
+
+
+
+    void
+    ComplementaritySolver::set_forces(const std::vector<double> &F,
+                                      const double               floor,
+                                      ReducedSolution           &s) const
+    {
+      for (unsigned int i = 0; i < pairs.size(); ++i)
         {
           s.force[i] = std::max(F[i], 0.);
           s.compliance[i] =
             C(i, i) + (s.force[i] > 0 ? slope(i, s.force[i], floor) : 0.);
         }
-      s.bodies_work = C.matrix_norm_square(dealii::Vector<double>(
-        s.force.begin(), s.force.end()));
+      s.bodies_work = C.matrix_norm_square(
+        dealii::Vector<double>(s.force.begin(), s.force.end()));
+    }
+
+
+
+    double
+    ComplementaritySolver::force_floor(const double torque) const
+    {
+      double arms = 0;
+      for (const ContactPair &p : pairs)
+        arms += std::abs(p.arm);
+      return 1e-9 * std::abs(torque) / arms;
+    }
+
+
+
+    ReducedSolution
+    ComplementaritySolver::solve(const double torque,
+                                 const double beta_guess) const
+    {
+      if (supports)
+        return solve_supported(torque, beta_guess);
+      const unsigned int n = pairs.size();
+      ReducedSolution    s;
+      s.force.assign(n, 0.);
+      s.compliance.assign(n, 0.);
+      s.rotation = beta_guess;
+      if (torque == 0 || n == 0)
+        return s;
+      const double        floor = force_floor(torque);
+      std::vector<double> F;
+      const auto          active = active_set_loop(
+        torque,
+        beta_guess,
+        floor,
+        [&](const std::vector<unsigned int> &set, std::vector<double> &f) {
+          return newton(set, torque, floor, f, s.rotation);
+        },
+        [&](const std::vector<unsigned int> &set, const std::vector<double> &f) {
+          return next_active_set(set, f, s.rotation);
+        },
+        F,
+        s);
+      s.k_tangent = tangent_stiffness(active, F, floor, s.rotation);
+      set_forces(F, floor, s);
       return s;
     }
   } // namespace reduced

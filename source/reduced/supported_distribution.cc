@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 
 namespace cycloid
 {
@@ -199,45 +198,22 @@ namespace cycloid
         q.rotation = beta_guess;
       if (torque == 0 || n == 0)
         return s;
-      double arms = 0;
-      for (const ContactPair &p : pairs)
-        arms += std::abs(p.arm);
-      const double floor         = 1e-9 * std::abs(torque) / arms;
-      const double bearing_floor = supports->stiffness_floor(torque);
-
-      std::vector<unsigned int> active = first_active_set(torque, beta_guess);
-      std::set<std::vector<unsigned int>> seen;
-      std::vector<double>                 F(n, 0.);
-      double                              active_arms = 0;
-      for (const unsigned int i : active)
-        active_arms += rigid_gap(i, beta_guess).second;
-      for (const unsigned int i : active)
-        F[i] = torque / active_arms;
-      while (true)
-        {
-          AssertThrow(seen.insert(active).second,
-                      dealii::ExcMessage(
-                        "reduced model: the active set of the load "
-                        "distribution on crank bearings cycles (a set "
-                        "repeated after " +
-                        std::to_string(seen.size()) + " sets)."));
-          s.iterations += supported_newton(
-            active, torque, floor, bearing_floor, F, s.motions, s.rotation);
-          ++s.active_sets;
-          const std::vector<unsigned int> next =
-            next_supported_set(active, F, s.motions);
-          if (next == active)
-            break;
-          for (unsigned int i = 0; i < n; ++i)
-            if (!std::binary_search(next.begin(), next.end(), i))
-              F[i] = 0;
-            else if (F[i] <= 0)
-              F[i] = floor;
-          active = next;
-          AssertThrow(!active.empty(),
-                      dealii::ExcMessage("reduced model: every contact left "
-                                         "the active set."));
-        }
+      const double        floor         = force_floor(torque);
+      const double        bearing_floor = supports->stiffness_floor(torque);
+      std::vector<double> F;
+      const auto          active = active_set_loop(
+        torque,
+        beta_guess,
+        floor,
+        [&](const std::vector<unsigned int> &set, std::vector<double> &f) {
+          return supported_newton(
+            set, torque, floor, bearing_floor, f, s.motions, s.rotation);
+        },
+        [&](const std::vector<unsigned int> &set, const std::vector<double> &f) {
+          return next_supported_set(set, f, s.motions);
+        },
+        F,
+        s);
 
       // dT/dbeta: the system without the torque row, differentiated in
       // beta, with the exact (unguarded) bearing stiffness.
@@ -267,14 +243,7 @@ namespace cycloid
       for (unsigned int a = 0; a < N; ++a)
         s.k_tangent += Jf(N, a) * x(a);
 
-      for (unsigned int i = 0; i < n; ++i)
-        {
-          s.force[i] = std::max(F[i], 0.);
-          s.compliance[i] =
-            C(i, i) + (s.force[i] > 0 ? slope(i, s.force[i], floor) : 0.);
-        }
-      s.bodies_work = C.matrix_norm_square(
-        dealii::Vector<double>(s.force.begin(), s.force.end()));
+      set_forces(F, floor, s);
       for (unsigned int d = 0; d < nd; ++d)
         s.bearings_work += supports->work(d, s.motions[d], s.rotation);
       return s;

@@ -107,6 +107,38 @@ namespace cycloid
       set_supports(const support::CrankSupports &supports);
 
     private:
+      /** The primal-dual active set shared by both supports: from the
+       * first active set (rotation @p beta_guess [rad]) with one force
+       * per active contact, @p newton_on each set (forces in place,
+       * returning its iterations), @p next_of the set after it, until a
+       * set repeats itself (cycling is an error). @p F the forces, @p s's
+       * iteration counts; returns the final set. @p floor [N]: the force
+       * a contact entering the set starts from. */
+      std::vector<unsigned int>
+      active_set_loop(
+        const double                                            torque,
+        const double                                            beta_guess,
+        const double                                            floor,
+        const std::function<unsigned int(const std::vector<unsigned int> &,
+                                         std::vector<double> &)> &newton_on,
+        const std::function<std::vector<unsigned int>(
+          const std::vector<unsigned int> &,
+          const std::vector<double> &)>                         &next_of,
+        std::vector<double>                                    &F,
+        ReducedSolution                                        &s) const;
+
+      /** @p s's forces, own compliances and bodies' work from the solved
+       * forces @p F. */
+      void
+      set_forces(const std::vector<double> &F,
+                 const double               floor,
+                 ReducedSolution           &s) const;
+
+      /** The force below which the near field is linearised, 1e-9 of the
+       * torque over the summed arms [N]. */
+      double
+      force_floor(const double torque) const;
+
       /** solve() on crank bearings. */
       ReducedSolution
       solve_supported(const double torque, const double beta_guess) const;
