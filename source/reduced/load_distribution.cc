@@ -170,6 +170,19 @@ namespace cycloid
       const std::vector<double>       &F,
       const double                     beta) const
     {
+      return next_set(active, F, [&](const unsigned int i) {
+        return rigid_gap(i, beta).first;
+      });
+    }
+
+
+
+    std::vector<unsigned int>
+    ComplementaritySolver::next_set(
+      const std::vector<unsigned int>              &active,
+      const std::vector<double>                    &F,
+      const std::function<double(unsigned int)>    &rigid_gap_of) const
+    {
       const unsigned int        n = pairs.size();
       std::vector<unsigned int> next;
       std::vector<bool>         is_active(n, false);
@@ -183,7 +196,7 @@ namespace cycloid
                 next.push_back(i);
               continue;
             }
-          double gap = rigid_gap(i, beta).first;
+          double gap = rigid_gap_of(i);
           for (const unsigned int j : active)
             gap += C(i, j) * F[j];
           if (gap < 0)

@@ -157,28 +157,11 @@ namespace cycloid
       const std::vector<double>              &F,
       const std::vector<support::DiscMotion> &q) const
     {
-      const unsigned int        n = pairs.size();
-      std::vector<unsigned int> next;
-      std::vector<bool>         is_active(n, false);
-      for (const unsigned int i : active)
-        is_active[i] = true;
-      for (unsigned int i = 0; i < n; ++i)
-        {
-          if (is_active[i])
-            {
-              if (F[i] > 0)
-                next.push_back(i);
-              continue;
-            }
-          const unsigned int d = pairs[i].disc;
-          double gap = rigid_gap(i, q[d].rotation).first -
-                       pairs[i].normal * q[d].translation;
-          for (const unsigned int j : active)
-            gap += C(i, j) * F[j];
-          if (gap < 0)
-            next.push_back(i);
-        }
-      return next;
+      return next_set(active, F, [&](const unsigned int i) {
+        const unsigned int d = pairs[i].disc;
+        return rigid_gap(i, q[d].rotation).first -
+               pairs[i].normal * q[d].translation;
+      });
     }
 
 

@@ -167,6 +167,15 @@ namespace cycloid
                        std::vector<support::DiscMotion> &q,
                        double                          &beta) const;
 
+      /** The set after @p active with forces @p F: the active contacts
+       * that still push, and the open ones whose gap (@p rigid_gap_of(i),
+       * the rigidly moved disc's, plus the bodies' give) the forces
+       * close. */
+      std::vector<unsigned int>
+      next_set(const std::vector<unsigned int>           &active,
+               const std::vector<double>                 &F,
+               const std::function<double(unsigned int)> &rigid_gap_of) const;
+
       /** next_active_set() with the discs moved by @p q. */
       std::vector<unsigned int>
       next_supported_set(const std::vector<unsigned int>        &active,
