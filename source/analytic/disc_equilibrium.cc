@@ -226,6 +226,103 @@ namespace cycloid
 
 
 
+    double
+    DiscEquilibrium::relative_residual(const dealii::Vector<double> &r,
+                                       const double                  torque,
+                                       const std::vector<PinLoad>   &pins) const
+    {
+      // Each disc's force and moment against the largest pin force and
+      // moment of the stage (a disc may carry nothing: at a small torque
+      // on clearances, one disc can float while the other carries), the
+      // torque against itself.
+      const unsigned int tb = 3 * supports.n_discs();
+      double             fs = 0, ms = 0;
+      for (const PinLoad &p : pins)
+        {
+          fs = std::max(fs, p.force);
+          ms = std::max(ms, p.force * std::abs(p.contact.arm));
+        }
+      double worst = std::abs(r(tb)) / std::abs(torque);
+      for (unsigned int d = 0; d < supports.n_discs(); ++d)
+        worst = std::max({worst,
+                          std::hypot(r(3 * d), r(3 * d + 1)) / fs,
+                          std::abs(r(3 * d + 2)) / ms});
+      return worst;
+    }
+
+
+
+    bool
+    DiscEquilibrium::newton_step(dealii::Vector<double>       &x,
+                                 const double                  torque,
+                                 const double                  floor,
+                                 std::vector<PinLoad>         &pins,
+                                 const dealii::Vector<double> &r) const
+    {
+      // Newton on the energy (convex: pins and rollers are springs of
+      // non-decreasing force, minus the torque's work), its Hessian the
+      // system's Jacobian with the torque row taken from the bearings'
+      // moments (equal to the pins' at equilibrium), which makes it
+      // symmetric. An Armijo line search on the energy then cannot stall
+      // where a pin or roller opens or closes.
+      dealii::Vector<double>     g, r_trial;
+      dealii::FullMatrix<double> H, J_trial;
+      gradient(x, torque, floor, pins, g, H);
+      dealii::Vector<double> dx(g);
+      guarded_solve(H, dx);
+      dx *= -1.;
+      const double e0    = energy(x, torque, pins);
+      const double slope = g * dx;
+      double       step  = 1.;
+      for (unsigned int k = 0; k < 50; ++k, step *= 0.5)
+        {
+          dealii::Vector<double> trial(x);
+          trial.add(step, dx);
+          // Near the minimum the energy's change is below its round-off:
+          // then a smaller residual decides.
+          if (energy(trial, torque, pins) <= e0 + 1e-4 * step * slope ||
+              (system(trial, torque, floor, pins, r_trial, J_trial),
+               merit(r_trial) < merit(r)))
+            {
+              const bool moved = !(trial == x);
+              x                = trial;
+              return moved;
+            }
+        }
+      return false;
+    }
+
+
+
+    double
+    DiscEquilibrium::tangent(const dealii::Vector<double> &x,
+                             const double                  torque,
+                             const double                  floor,
+                             std::vector<PinLoad>         &pins) const
+    {
+      // The discs' equilibrium differentiated in beta, with the exact
+      // stiffness (open pins none, a bearing with no roller loaded a guard
+      // far below round-off).
+      const unsigned int         tb = 3 * supports.n_discs();
+      dealii::Vector<double>     r;
+      dealii::FullMatrix<double> J, K(tb, tb);
+      system(x, torque, 1e-12 * floor, pins, r, J);
+      dealii::Vector<double> dq(tb);
+      for (unsigned int a = 0; a < tb; ++a)
+        {
+          for (unsigned int b = 0; b < tb; ++b)
+            K(a, b) = J(a, b);
+          dq(a) = -J(a, tb);
+        }
+      guarded_solve(K, dq);
+      double slope = 0;
+      for (unsigned int a = 0; a < tb; ++a)
+        slope += J(tb, a) * dq(a);
+      return slope;
+    }
+
+
+
     DiscEquilibrium::Solution
     DiscEquilibrium::solve(const double                            torque,
                            const double                            beta_guess,
@@ -235,7 +332,7 @@ namespace cycloid
       const unsigned int     nd    = supports.n_discs();
       const unsigned int     tb    = 3 * nd;
       const double           floor = supports.stiffness_floor(torque);
-      dealii::Vector<double> x(tb + 1), r, trial;
+      dealii::Vector<double> x(tb + 1), r;
       for (unsigned int d = 0; d < nd; ++d)
         {
           x(3 * d)     = start.empty() ? 0. : start[d].translation[0];
@@ -246,81 +343,26 @@ namespace cycloid
       dealii::FullMatrix<double> J;
       system(x, torque, floor, pins, r, J);
       Solution s;
-      // The largest residual: each disc's force and moment against the
-      // largest pin force and moment of the stage (a disc may carry
-      // nothing: at a small torque on clearances, one disc can float while
-      // the other carries), the torque against itself.
-      const auto relative_residual = [&]() {
-        double fs = 0, ms = 0;
-        for (const PinLoad &p : pins)
-          {
-            fs = std::max(fs, p.force);
-            ms = std::max(ms, p.force * std::abs(p.contact.arm));
-          }
-        double worst = std::abs(r(tb)) / std::abs(torque);
-        for (unsigned int d = 0; d < nd; ++d)
-          worst = std::max({worst,
-                            std::hypot(r(3 * d), r(3 * d + 1)) / fs,
-                            std::abs(r(3 * d + 2)) / ms});
-        return worst;
-      };
-      bool   converged = false;
-      double previous  = std::numeric_limits<double>::max();
+      bool     converged = false;
+      double   previous  = std::numeric_limits<double>::max();
       for (; s.iterations < max_iterations; ++s.iterations)
         {
           // Done, or no better than the last step where round-off rules
           // (at a vanishing torque, the approaches are a few 1e-12 mm on
           // positions of 1e-3 mm).
-          const double now = relative_residual();
+          const double now = relative_residual(r, torque, pins);
           if ((converged = now <= tolerance ||
                            (now >= 0.5 * previous && now <= 1e-6)))
             break;
           previous = now;
-          // Newton on the energy (convex: pins and rollers are springs of
-          // non-decreasing force, minus the torque's work), its Hessian H
-          // the system's Jacobian with the torque row taken from the
-          // bearings' moments (equal to the pins' at equilibrium), which
-          // makes it symmetric. An Armijo line search on the energy then
-          // cannot stall where a pin or roller opens or closes.
-          dealii::Vector<double>     g;
-          dealii::FullMatrix<double> H;
-          gradient(x, torque, floor, pins, g, H);
-          dealii::Vector<double> dx(g);
-          guarded_solve(H, dx);
-          dx *= -1.;
-          const double e0    = energy(x, torque, pins);
-          const double slope = g * dx;
-          double       step  = 1.;
-          bool         moved = false;
-
-
-
-
-
-          for (unsigned int k = 0; k < 50; ++k, step *= 0.5)
-            {
-              trial = x;
-              trial.add(step, dx);
-              // Near the minimum the energy's change is below its
-              // round-off: then a smaller residual decides.
-              dealii::Vector<double>     r_trial;
-              dealii::FullMatrix<double> J_trial;
-              if (energy(trial, torque, pins) <= e0 + 1e-4 * step * slope ||
-                  (system(trial, torque, floor, pins, r_trial, J_trial),
-                   merit(r_trial) < merit(r)))
-                {
-                  moved = true;
-                  break;
-                }
-            }
-          // Round-off: the energy cannot tell the step from none, so the
+          // Round-off: the energy cannot tell a step from none, so the
           // residual is as small as it gets.
-          if (!moved || trial == x)
+          if (!newton_step(x, torque, floor, pins, r))
             {
-              converged = relative_residual() <= 1e-6;
+              system(x, torque, floor, pins, r, J);
+              converged = relative_residual(r, torque, pins) <= 1e-6;
               break;
             }
-          x = trial;
           system(x, torque, floor, pins, r, J);
         }
       AssertThrow(converged,
@@ -329,21 +371,8 @@ namespace cycloid
                     "their bearings in " +
                     std::to_string(max_iterations) +
                     " iterations (Analytic/Maximum iterations)."));
-      // dT/dbeta: the discs' equilibrium differentiated in beta, with the
-      // exact stiffness (open pins none, a bearing with no roller loaded a
-      // guard far below round-off).
-      system(x, torque, 1e-12 * floor, pins, r, J);
-      dealii::FullMatrix<double> K(tb, tb);
-      dealii::Vector<double>     dq(tb);
-      for (unsigned int a = 0; a < tb; ++a)
-        {
-          for (unsigned int b = 0; b < tb; ++b)
-            K(a, b) = J(a, b);
-          dq(a) = -J(a, tb);
-        }
-      guarded_solve(K, dq);
-      for (unsigned int a = 0; a < tb; ++a)
-        s.slope += J(tb, a) * dq(a);
+      s.slope    = tangent(x, torque, floor, pins);
+      system(x, torque, floor, pins, r, J);
       s.rotation = x(tb);
       s.motions  = motions_of(x);
       return s;

@@ -232,6 +232,30 @@ namespace cycloid
                dealii::Vector<double>       &g,
                dealii::FullMatrix<double>   &H) const;
 
+      /** The largest of the residual @p r's parts against the stage's
+       * largest force, moment and @p torque [-]. */
+      double
+      relative_residual(const dealii::Vector<double> &r,
+                        const double                  torque,
+                        const std::vector<PinLoad>   &pins) const;
+
+      /** One guarded Newton step on the energy from @p x (in place), with
+       * an Armijo line search (or, below the energy's round-off, a smaller
+       * residual than @p r); false if no step moves. */
+      bool
+      newton_step(dealii::Vector<double>       &x,
+                  const double                  torque,
+                  const double                  floor,
+                  std::vector<PinLoad>         &pins,
+                  const dealii::Vector<double> &r) const;
+
+      /** dT/dbeta at the solution @p x [N mm/rad]. */
+      double
+      tangent(const dealii::Vector<double> &x,
+              const double                  torque,
+              const double                  floor,
+              std::vector<PinLoad>         &pins) const;
+
       /** The energy of pins and bearings minus the torque's work T beta
        * at @p x [N mm]: the solution is its minimum. */
       double
