@@ -508,6 +508,17 @@ TEST(Parameters, IgnoredEntriesAreNamed)
       .empty());
   EXPECT_TRUE(
     app::ignored_entry_warnings({Mode::analytic, 2, false}, {}).empty());
+  // The bearings' sizes only count on needle bearings.
+  const std::map<std::string, std::string> clearance{
+    {"Crank bearings/Radial clearance", "5"}};
+  EXPECT_EQ(app::ignored_entry_warnings({Mode::reduced, 3, false}, clearance),
+            std::vector<std::string>{
+              "warning: Crank bearings/Radial clearance = 5 is ignored by "
+              "Run = reduced (Crank bearings/Model = rigid holds the crank "
+              "holes rigidly)"});
+  EXPECT_TRUE(
+    app::ignored_entry_warnings({Mode::reduced, 3, false, true}, clearance)
+      .empty());
 
   const auto count = [](const Mode         mode,
                         const std::string &entry,

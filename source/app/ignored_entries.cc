@@ -42,6 +42,22 @@ namespace cycloid
         return !s.refine_loaded_side_only;
       }
 
+      /** The discs on rigid crank holes. */
+      bool
+      rigid_supports(const RunShape &s)
+      {
+        return !s.needle_bearings;
+      }
+
+      const Modes all_modes{Mode::analytic,
+                            Mode::mesh,
+                            Mode::quasi_static,
+                            Mode::phase_sweep,
+                            Mode::transient,
+                            Mode::reduced,
+                            Mode::tolerance,
+                            Mode::profile};
+
       const Modes fe_modes{Mode::mesh,
                            Mode::quasi_static,
                            Mode::phase_sweep,
@@ -219,6 +235,25 @@ namespace cycloid
             Mode::reduced,
             Mode::profile},
            "only Run = tolerance reads it"},
+          {"Crank bearings/Number of rollers",
+           all_modes,
+           "Crank bearings/Model = rigid holds the crank holes rigidly",
+           rigid_supports},
+          {"Crank bearings/Roller diameter",
+           all_modes,
+           "Crank bearings/Model = rigid holds the crank holes rigidly",
+           rigid_supports},
+          {"Crank bearings/Roller length",
+           all_modes,
+           "Crank bearings/Model = rigid holds the crank holes rigidly",
+           rigid_supports},
+          {"Crank bearings/Radial clearance",
+           all_modes,
+           "Crank bearings/Model = rigid holds the crank holes rigidly",
+           rigid_supports},
+          {"Crank bearings/*",
+           {Mode::mesh, Mode::profile},
+           "it solves no load state"},
           {"Profile/*",
            {Mode::analytic,
             Mode::mesh,

@@ -262,7 +262,8 @@ namespace cycloid
       for (const std::string &warning :
            ignored_entry_warnings({prm.run.mode,
                                    prm.scene.dimension,
-                                   prm.mesh.refine_loaded_side_only},
+                                   prm.mesh.refine_loaded_side_only,
+                                   prm.bearings.needle()},
                                   changed))
         std::cerr << warning << std::endl;
     }

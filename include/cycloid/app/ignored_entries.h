@@ -23,6 +23,8 @@ namespace cycloid
       /** Mesh/Contact refinement side = loaded: the mesh then depends on
        * the sign of the loads. */
       bool refine_loaded_side_only = false;
+      /** Crank bearings/Model = needle. */
+      bool needle_bearings = false;
     };
 
     /**
