@@ -108,6 +108,14 @@ namespace cycloid
                     "Crank bearings/Model = needle needs Geometry/Number of "
                     "crank holes >= 2 (a disc on one bearing is free to "
                     "turn about it)."));
+      AssertThrow(scene.load_introduction ==
+                    parameters::SceneParameters::LoadIntroduction::crank_holes,
+                  dealii::ExcMessage(
+                    "Crank bearings/Model = needle needs Scene/Load "
+                    "introduction = crank holes: the bearings sit in the "
+                    "crank holes, and the disc's compliance is taken with "
+                    "them held (with Load introduction = bore it would be "
+                    "held at the bore)."));
       // The sizes fit the hole (throws with the reason otherwise).
       bearings.size(geometry.crank_hole_radius, geometry.tooth_width);
     }
