@@ -166,6 +166,59 @@ namespace cycloid
 
 
 
+    std::vector<support::DiscMotion>
+    ComplementaritySolver::initial_motions(const double torque,
+                                           const double beta_guess,
+                                           const double bearing_floor) const
+    {
+      // The first set's starting forces (as active_set_loop() takes them),
+      // and each disc placed where its bearings alone carry their
+      // resultant: the Newton iteration then starts with the bearings
+      // loaded as they will be, not from rest.
+      const std::vector<unsigned int> active =
+        first_active_set(torque, beta_guess);
+      double active_arms = 0;
+      for (const unsigned int i : active)
+        active_arms += rigid_gap(i, beta_guess).second;
+      const unsigned int nd = supports->n_discs();
+      std::vector<std::array<double, 3>> load(nd, {{0., 0., 0.}});
+      for (const unsigned int i : active)
+        {
+          const double f = torque / active_arms;
+          load[pairs[i].disc][0] += f * pairs[i].normal[0];
+          load[pairs[i].disc][1] += f * pairs[i].normal[1];
+          load[pairs[i].disc][2] += f * rigid_gap(i, beta_guess).second;
+        }
+      std::vector<support::DiscMotion> q(nd);
+      for (unsigned int d = 0; d < nd; ++d)
+        {
+          q[d].rotation = beta_guess;
+          // Newton on the bearings' resultant; a few steps suffice for a
+          // start (the rollers' law is a power 1.11 of the approach).
+          for (unsigned int it = 0; it < 8; ++it)
+            {
+              const auto b =
+                supports->resultant(d, q[d], beta_guess, bearing_floor);
+              dealii::FullMatrix<double> J(3, 3);
+              dealii::Vector<double>     r(3), dq(3);
+              for (unsigned int a = 0; a < 3; ++a)
+                {
+                  r(a) = b.value[a] - load[d][a];
+                  for (unsigned int c = 0; c < 3; ++c)
+                    J(a, c) = b.derivative(a, c);
+                }
+              J.gauss_jordan();
+              J.vmult(dq, r);
+              q[d].translation[0] -= dq(0);
+              q[d].translation[1] -= dq(1);
+              q[d].rotation -= dq(2);
+            }
+        }
+      return q;
+    }
+
+
+
     ReducedSolution
     ComplementaritySolver::solve_supported(const double torque,
                                            const double beta_guess) const
@@ -183,6 +236,7 @@ namespace cycloid
         return s;
       const double        floor         = force_floor(torque);
       const double        bearing_floor = supports->stiffness_floor(torque);
+      s.motions = initial_motions(torque, beta_guess, bearing_floor);
       std::vector<double> F;
       const auto          active = active_set_loop(
         torque,

@@ -139,6 +139,14 @@ namespace cycloid
       double
       force_floor(const double torque) const;
 
+      /** Each disc where its bearings alone carry the first active set's
+       * starting forces (rotation @p beta_guess [rad]): the start of
+       * solve_supported(). */
+      std::vector<support::DiscMotion>
+      initial_motions(const double torque,
+                      const double beta_guess,
+                      const double bearing_floor) const;
+
       /** solve() on crank bearings. */
       ReducedSolution
       solve_supported(const double torque, const double beta_guess) const;
