@@ -22,6 +22,8 @@
 #include <memory>
 #include <vector>
 
+#include "reduced_settings.h"
+
 using namespace cycloid;
 using dealii::Tensor;
 
@@ -102,7 +104,8 @@ TEST(NeedleBearing, EachRollerFollowsPalmgren)
   for (const double q : {1., 250., 4000.})
     {
       const double s = support::NeedleBearing::roller_approach(q, 16.);
-      EXPECT_NEAR(s, 2 * 3.84e-5 * std::pow(q, 0.9) / std::pow(16., 0.8),
+      EXPECT_NEAR(s,
+                  2 * 3.84e-5 * std::pow(q, 0.9) / std::pow(16., 0.8),
                   1e-15);
       EXPECT_NEAR(support::NeedleBearing::roller_load(s, 16.), q, 1e-10 * q);
     }
@@ -128,8 +131,8 @@ TEST(NeedleBearing, ManyRollersShareTheLoadAsStribeck)
   const unsigned int z = 720;
   // The cage half a pitch off, so that no roller sits at 90 degrees.
   const double cage = dealii::numbers::PI / z;
-  const auto   b = bearing(z).response(Tensor<1, 2>({-2e-3, 0.}), cage);
-  const double F = b.force.norm();
+  const auto   b    = bearing(z).response(Tensor<1, 2>({-2e-3, 0.}), cage);
+  const double F    = b.force.norm();
   EXPECT_NEAR(b.max_roller_load * z / F, 4.085, 0.005);
   EXPECT_NEAR(support::NeedleBearing::stribeck_number, 4.08, 1e-12);
   EXPECT_EQ(b.rollers_loaded, z / 2);
@@ -156,17 +159,17 @@ TEST(NeedleBearing, NoForceInsideTheClearanceAndThenPalmgren)
 
 TEST(NeedleBearing, StiffnessIsTheDerivativeOfTheForce)
 {
-  const auto               law = bearing(17, 2e-3);
-  const Tensor<1, 2>       d({-4e-3, 3e-3});
-  const auto               r = law.response(d, 0.2);
-  const double             h = 1e-8;
+  const auto         law = bearing(17, 2e-3);
+  const Tensor<1, 2> d({-4e-3, 3e-3});
+  const auto         r = law.response(d, 0.2);
+  const double       h = 1e-8;
   for (unsigned int k = 0; k < 2; ++k)
     {
       Tensor<1, 2> dp = d, dm = d;
       dp[k] += h;
       dm[k] -= h;
-      const auto fd = (law.response(dp, 0.2).force -
-                       law.response(dm, 0.2).force) / (2 * h);
+      const auto fd =
+        (law.response(dp, 0.2).force - law.response(dm, 0.2).force) / (2 * h);
       for (unsigned int a = 0; a < 2; ++a)
         EXPECT_NEAR(r.stiffness[a][k], fd[a], 1e-5 * r.stiffness.norm());
     }
@@ -198,11 +201,9 @@ TEST(BearingsAnalytic, EachDiscIsInEquilibriumAndTheBearingsCarryTheTorque)
   for (const double psi : {0., 0.05})
     for (const double T : {300., -1000.})
       {
-        const auto s =
-          model.stage_state(model.solve(psi, T, 0.), psi);
+        const auto s = model.stage_state(model.solve(psi, T, 0.), psi);
         ASSERT_EQ(s.bearings.size(), 6u);
-        const auto [worst, moment] =
-          equilibrium(s, model.geometry(), 2);
+        const auto [worst, moment] = equilibrium(s, model.geometry(), 2);
         EXPECT_LT(worst, 1e-9) << "crank " << psi << ", torque " << T;
         EXPECT_NEAR(moment, T * 1e3, 1e-9 * std::abs(T) * 1e3);
       }
@@ -222,8 +223,7 @@ TEST(BearingsAnalytic, TheBreakdownSplitsTheOutputWorkExactly)
   for (const auto &pin : s.pins)
     pins_work += pin.fn * (pin.approach + std::max(pin.clearance, 0.));
   EXPECT_NEAR(s.breakdown.contacts, pins_work / (T * 1e3), 1e-9 * s.rotation);
-  EXPECT_NEAR(s.breakdown.contacts + s.breakdown.bodies +
-                s.breakdown.bearings,
+  EXPECT_NEAR(s.breakdown.contacts + s.breakdown.bodies + s.breakdown.bearings,
               s.rotation,
               1e-14);
   // With a 5 um clearance the bearings take up about 5 um / 65 mm of the
@@ -238,10 +238,10 @@ TEST(BearingsAnalytic, TangentIsTheDerivativeOfTheTorque)
   const auto                 p = seed_on_bearings();
   const analytic::StageModel model(p.model_settings());
   const double               T = 500, dT = 1e-4 * T;
-  const auto                 s = model.solve(0., T, 0.);
-  const double               fd =
-    2 * dT * 1e-3 /
-    (model.solve(0., T + dT, 0.).rotation - model.solve(0., T - dT, 0.).rotation);
+  const auto                 s  = model.solve(0., T, 0.);
+  const double               fd = 2 * dT * 1e-3 /
+                    (model.solve(0., T + dT, 0.).rotation -
+                     model.solve(0., T - dT, 0.).rotation);
   EXPECT_NEAR(s.k_tangent * 1e-3, fd, 1e-4 * fd);
 }
 
@@ -251,10 +251,10 @@ TEST(BearingsAnalytic, StiffBearingsAreTheRigidSupport)
 {
   // Rollers 10^6 mm long are 10^4 times stiffer than 16 mm ones:
   // the stage then turns and loads its pins as on rigid supports.
-  auto p                    = seed_on_bearings();
-  p.bearings.roller_length  = 1e6;
+  auto p                   = seed_on_bearings();
+  p.bearings.roller_length = 1e6;
   const analytic::StageModel stiff(p.model_settings());
-  p.bearings.model          = support::CrankBearingParameters::Model::rigid;
+  p.bearings.model = support::CrankBearingParameters::Model::rigid;
   const analytic::StageModel rigid(p.model_settings());
   const auto a = stiff.solve(0., 1000., 0.), b = rigid.solve(0., 1000., 0.);
   EXPECT_NEAR(a.rotation, b.rotation, 1e-3 * b.rotation);
@@ -282,8 +282,7 @@ TEST(BearingsAnalytic, AClearanceAddsLostMotionOnly)
   EXPECT_LT(b.takeup - a.takeup, 2. * 10e-3 / 65.);
   EXPECT_GT(b.rotation - b.takeup, a.rotation - a.takeup);
   // The zero-torque limit carries no torque, just beyond it some.
-  const auto zero = loose.zero_torque_limit(
-    loose.unloaded_pins(0.), 1, 0.);
+  const auto zero = loose.zero_torque_limit(loose.unloaded_pins(0.), 1, 0.);
   EXPECT_NEAR(zero.rotation, b.takeup, 1e-6 * b.takeup);
   for (const auto &bs : zero.bearings)
     EXPECT_LT(std::hypot(bs.fx, bs.fy), 1e-3);
@@ -301,20 +300,7 @@ namespace
     app::AllParameters p = seed_on_bearings();
     p.scene.dimension    = 2;
     p.scene.n_discs      = 1;
-    reduced::ReducedSettings s;
-    s.stage.geometry                   = p.geometry;
-    s.stage.material                   = p.material;
-    s.stage.scene                      = p.scene;
-    s.stage.mesh                       = p.mesh;
-    s.stage.contact                    = p.contact;
-    s.stage.analytic                   = p.analytic;
-    s.stage.bearings                   = p.bearings;
-    s.stage.mesh.error.mode            = mesh::ErrorControl::Mode::off;
-    s.stage.mesh.error.target_accuracy = 0;
-    s.stage.quiet                      = true;
-    s.reduced                          = p.reduced;
-    s.reduced.error_estimate           = false;
-    return s;
+    return tests::quiet_reduced_settings(p);
   }
 
   /** One coarse model for the reduced tests (a few seconds to build). */
@@ -344,9 +330,9 @@ TEST_F(BearingsReduced, EachDiscIsInEquilibriumAndTheWorkSplits)
   const auto                     s = reduced_on_bearings();
   const reduced::ReducedModel<2> model(s, *coarse, 0., 1);
   const analytic::StageModel     geo(s.stage.model_settings());
-  const double                   T = 1000;
-  const auto state = model.stage_state(model.solve(T, 0.));
-  const auto [worst, moment] = equilibrium(state, geo.geometry(), 1);
+  const double                   T     = 1000;
+  const auto                     state = model.stage_state(model.solve(T, 0.));
+  const auto [worst, moment]           = equilibrium(state, geo.geometry(), 1);
   EXPECT_LT(worst, 1e-9);
   EXPECT_NEAR(moment, T * 1e3, 1e-8 * T * 1e3);
   EXPECT_NEAR(state.breakdown.contacts + state.breakdown.bodies +
@@ -374,11 +360,12 @@ TEST_F(BearingsReduced, TangentIsTheDerivativeOfTheTorque)
 
 TEST_F(BearingsReduced, StiffBearingsAreTheRigidSupport)
 {
-  auto stiff                     = reduced_on_bearings();
+  auto stiff                         = reduced_on_bearings();
   stiff.stage.bearings.roller_length = 1e6;
-  auto rigid                     = stiff;
+  auto rigid                         = stiff;
   rigid.stage.bearings.model = support::CrankBearingParameters::Model::rigid;
-  const reduced::ReducedModel<2> a(stiff, *coarse, 0., 1), b(rigid, *coarse, 0., 1);
+  const reduced::ReducedModel<2> a(stiff, *coarse, 0., 1),
+    b(rigid, *coarse, 0., 1);
   const auto sa = a.solve(1000., 0.), sb = b.solve(1000., 0.);
   EXPECT_NEAR(sa.rotation, sb.rotation, 1e-3 * sb.rotation);
   double fmax = 0;

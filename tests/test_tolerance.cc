@@ -20,6 +20,8 @@
 #include <set>
 #include <vector>
 
+#include "reduced_settings.h"
+
 using namespace cycloid;
 using namespace cycloid::tolerance;
 
@@ -49,19 +51,7 @@ namespace
     p.geometry.delta_pin_radius        = 0.01;
     p.scene.dimension                  = 2;
     p.scene.n_discs                    = 1;
-    reduced::ReducedSettings s;
-    s.stage.geometry                   = p.geometry;
-    s.stage.material                   = p.material;
-    s.stage.scene                      = p.scene;
-    s.stage.mesh                       = p.mesh;
-    s.stage.contact                    = p.contact;
-    s.stage.analytic                   = p.analytic;
-    s.stage.mesh.error.mode            = mesh::ErrorControl::Mode::off;
-    s.stage.mesh.error.target_accuracy = 0;
-    s.stage.quiet                      = true;
-    s.reduced                          = p.reduced;
-    s.reduced.error_estimate           = false;
-    return s;
+    return tests::quiet_reduced_settings(p);
   }
 
   /** Force on (disc 0, pin @p j) of @p load. */

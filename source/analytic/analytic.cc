@@ -8,8 +8,8 @@
 #include <cycloid/geometry/safeguarded_newton.h>
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -567,8 +567,8 @@ namespace cycloid
       const auto torque_of = [&](const double beta, double &dg) {
         return torque_at(beta, state.pins, dg);
       };
-      double       dg = 0;
-      const double x  = carrying_rotation(torque_of,
+      double       dg       = 0;
+      const double x        = carrying_rotation(torque_of,
                                          std::abs(target),
                                          sign,
                                          takeup,

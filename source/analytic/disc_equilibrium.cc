@@ -40,26 +40,27 @@ namespace cycloid
         double scale = 0;
         for (unsigned int i = 0; i < A.m(); ++i)
           scale = std::max(scale, std::abs(A(i, i)));
-        for (double shift = 0;; shift = shift == 0 ? 1e-10 * scale : 100 * shift)
+        for (double shift = 0;;
+             shift        = shift == 0 ? 1e-10 * scale : 100 * shift)
           {
-            dealii::LAPACKFullMatrix<double> L(A.m(), A.n());
-            L = A;
-            for (unsigned int i = 0; i < A.m(); ++i)
+                   dealii::LAPACKFullMatrix<double> L(A.m(), A.n());
+                   L = A;
+                   for (unsigned int i = 0; i < A.m(); ++i)
               L(i, i) += (A(i, i) < 0 ? -shift : shift);
             try
               {
-                L.compute_lu_factorization();
+                       L.compute_lu_factorization();
               }
             catch (const dealii::ExceptionBase &)
               {
-                AssertThrow(shift < scale,
+                       AssertThrow(shift < scale,
                             dealii::ExcMessage(
                               "crank bearings: the discs' equilibrium is "
-                              "singular (a disc free to move)."));
-                continue;
+                                     "singular (a disc free to move)."));
+                       continue;
               }
             L.solve(rhs);
-            return;
+                   return;
           }
       }
     } // namespace
@@ -88,11 +89,11 @@ namespace cycloid
     {
       // The open pins get a guard with the bearings' (not in the final
       // tangent, whose bearing guard is far smaller).
-      const double guarded = 1e-6 * supports.stiffness_floor(torque);
-      const unsigned int nd   = supports.n_discs();
-      const unsigned int tb   = 3 * nd; // the torque row, the beta column
-      const double       beta = x(tb);
-      const auto         q    = motions_of(x);
+      const double       guarded = 1e-6 * supports.stiffness_floor(torque);
+      const unsigned int nd      = supports.n_discs();
+      const unsigned int tb      = 3 * nd; // the torque row, the beta column
+      const double       beta    = x(tb);
+      const auto         q       = motions_of(x);
       r.reinit(tb + 1);
       J.reinit(tb + 1, tb + 1);
       for (unsigned int d = 0; d < nd; ++d)
@@ -149,8 +150,8 @@ namespace cycloid
                               dealii::Vector<double>       &g,
                               dealii::FullMatrix<double>   &H) const
     {
-      const unsigned int nd = supports.n_discs();
-      const unsigned int tb = 3 * nd;
+      const unsigned int         nd = supports.n_discs();
+      const unsigned int         tb = 3 * nd;
       dealii::Vector<double>     r;
       dealii::FullMatrix<double> J;
       system(x, torque, floor, pins, r, J);
@@ -199,9 +200,10 @@ namespace cycloid
       for (const PinLoad &p : pins)
         {
           const unsigned int d = p.contact.disc;
-          const double       a =
-            p.contact.normal[0] * x(3 * d) + p.contact.normal[1] * x(3 * d + 1) +
-            p.contact.arm * x(3 * d + 2) - std::max(p.contact.clearance, 0.);
+          const double       a = p.contact.normal[0] * x(3 * d) +
+                           p.contact.normal[1] * x(3 * d + 1) +
+                           p.contact.arm * x(3 * d + 2) -
+                           std::max(p.contact.clearance, 0.);
           if (a <= 0)
             continue;
           for (unsigned int k = 0; k < 4; ++k)
@@ -351,8 +353,8 @@ namespace cycloid
           // (at a vanishing torque, the approaches are a few 1e-12 mm on
           // positions of 1e-3 mm).
           const double now = relative_residual(r, torque, pins);
-          if ((converged = now <= tolerance ||
-                           (now >= 0.5 * previous && now <= 1e-6)))
+          if ((converged =
+                 now <= tolerance || (now >= 0.5 * previous && now <= 1e-6)))
             break;
           previous = now;
           // Round-off: the energy cannot tell a step from none, so the
@@ -371,7 +373,7 @@ namespace cycloid
                     "their bearings in " +
                     std::to_string(max_iterations) +
                     " iterations (Analytic/Maximum iterations)."));
-      s.slope    = tangent(x, torque, floor, pins);
+      s.slope = tangent(x, torque, floor, pins);
       system(x, torque, floor, pins, r, J);
       s.rotation = x(tb);
       s.motions  = motions_of(x);
@@ -390,10 +392,10 @@ namespace cycloid
        * discs floating in their clearances, where the iteration would
        * stall. */
       DiscEquilibrium::Solution
-      vanishing_torque(const DiscEquilibrium      &eq,
-                       DiscEquilibrium::Solution   s,
-                       double                      torque,
-                       std::vector<PinLoad>        pins)
+      vanishing_torque(const DiscEquilibrium    &eq,
+                       DiscEquilibrium::Solution s,
+                       double                    torque,
+                       std::vector<PinLoad>      pins)
       {
         while (std::abs(torque) > 1.0001e-3)
           {
@@ -408,8 +410,8 @@ namespace cycloid
 
     LoadState
     LoadDistribution::zero_torque_limit(
-      const std::vector<PinLoad>    &pins,
-      const int                      side,
+      const std::vector<PinLoad>   &pins,
+      const int                     side,
       const support::CrankSupports &supports) const
     {
       LoadState state = zero_torque_limit(pins, side);
@@ -424,9 +426,10 @@ namespace cycloid
           const double          T = side * 1e3;
           const DiscEquilibrium eq(model, supports, tolerance, max_iterations);
           std::vector<PinLoad>  loaded = pins;
-          const double rigid = LoadDistribution::solve(pins, side * 1., 0.).rotation;
-          const auto   s     = vanishing_torque(
-            eq, eq.solve(T, rigid, {}, loaded), T, pins);
+          const double          rigid =
+            LoadDistribution::solve(pins, side * 1., 0.).rotation;
+          const auto s =
+            vanishing_torque(eq, eq.solve(T, rigid, {}, loaded), T, pins);
           state.rotation = state.takeup = s.rotation;
           state.motions                 = s.motions;
         }
@@ -440,9 +443,9 @@ namespace cycloid
 
 
     LoadState
-    LoadDistribution::solve(const std::vector<PinLoad>    &pins_in,
-                            const double                   torque,
-                            const double                   beta_guess,
+    LoadDistribution::solve(const std::vector<PinLoad>   &pins_in,
+                            const double                  torque,
+                            const double                  beta_guess,
                             const support::CrankSupports &supports) const
     {
       if (torque == 0)
@@ -454,10 +457,9 @@ namespace cycloid
       const double start =
         sign * beta_guess > sign * state.rotation ? beta_guess : state.rotation;
       const DiscEquilibrium eq(model, supports, tolerance, max_iterations);
-      const auto s = eq.solve(torque * 1e3, start, {}, state.pins);
+      const auto            s = eq.solve(torque * 1e3, start, {}, state.pins);
       if (supports.bearing().size().clearance > 0)
-        state.takeup =
-          vanishing_torque(eq, s, torque * 1e3, pins_in).rotation;
+        state.takeup = vanishing_torque(eq, s, torque * 1e3, pins_in).rotation;
       state.rotation        = s.rotation;
       state.k_tangent       = s.slope * 1e-3;
       state.iterations      = s.iterations;

@@ -160,9 +160,7 @@ namespace cycloid
            o << std::hypot(r.bearing.fx, r.bearing.fy);
          }},
         {"deflection_um",
-         [](auto &o, const R &r) {
-           o << r.bearing.deflection * u::um_per_mm;
-         }},
+         [](auto &o, const R &r) { o << r.bearing.deflection * u::um_per_mm; }},
         {"rollers_loaded",
          [](auto &o, const R &r) { o << r.bearing.rollers_loaded; }},
         {"max_roller_load_N",
@@ -178,7 +176,8 @@ namespace cycloid
       using R                                     = results::StageState;
       static const std::vector<Column<R>> columns = {
         {"step", [](auto &o, const R &s) { o << s.step; }},
-        {"crank_deg", [](auto &o, const R &s) { o << s.crank * u::deg_per_rad; }},
+        {"crank_deg",
+         [](auto &o, const R &s) { o << s.crank * u::deg_per_rad; }},
         {"torque_Nm", [](auto &o, const R &s) { o << s.torque; }},
         {"total_rad", [](auto &o, const R &s) { o << s.rotation; }},
         {"contacts_rad",

@@ -272,7 +272,8 @@ namespace cycloid
           double peak = 0;
           for (const results::BearingState &b : s.bearings)
             peak = std::max(peak, std::hypot(b.fx, b.fy));
-          std::cout << ", crank bearings " << 100. * s.breakdown.bearings / s.rotation
+          std::cout << ", crank bearings "
+                    << 100. * s.breakdown.bearings / s.rotation
                     << " % of beta, largest bearing force " << peak << " N";
         }
       if (s.dofs > 0)
@@ -561,11 +562,11 @@ namespace cycloid
                    << c.lost_motion_clearance_arcmin << ','
                    << c.lost_motion_elastic_arcmin << '\n';
           std::cout << (options.bearings ?
-                         "  catalogue figures of the cycloid-pin stage on "
-                         "its crank needle bearings (no shafts, main "
-                         "bearings or carrier), crank " :
-                         "  catalogue figures of the cycloid-pin stage alone "
-                         "(no bearings or shafts), crank ")
+                          "  catalogue figures of the cycloid-pin stage on "
+                          "its crank needle bearings (no shafts, main "
+                          "bearings or carrier), crank " :
+                          "  catalogue figures of the cycloid-pin stage alone "
+                          "(no bearings or shafts), crank ")
                     << c.crank * u::deg_per_rad << " deg, rated torque "
                     << c.rated_torque << " N m: torsional rigidity "
                     << c.rigidity_Nm_per_arcmin << " N m/arcmin, lost motion "

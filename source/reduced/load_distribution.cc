@@ -179,9 +179,9 @@ namespace cycloid
 
     std::vector<unsigned int>
     ComplementaritySolver::next_set(
-      const std::vector<unsigned int>              &active,
-      const std::vector<double>                    &F,
-      const std::function<double(unsigned int)>    &rigid_gap_of) const
+      const std::vector<unsigned int>           &active,
+      const std::vector<double>                 &F,
+      const std::function<double(unsigned int)> &rigid_gap_of) const
     {
       const unsigned int        n = pairs.size();
       std::vector<unsigned int> next;
@@ -237,28 +237,21 @@ namespace cycloid
 
     std::vector<unsigned int>
     ComplementaritySolver::active_set_loop(
-      const double                                            torque,
-      const double                                            beta_guess,
-      const double                                            floor,
+      const double                                              torque,
+      const double                                              beta_guess,
+      const double                                              floor,
       const std::function<unsigned int(const std::vector<unsigned int> &,
                                        std::vector<double> &)> &newton_on,
-      const std::function<std::vector<unsigned int>(
-        const std::vector<unsigned int> &,
-        const std::vector<double> &)>                         &next_of,
-      std::vector<double>                                    &F,
-      ReducedSolution                                        &s) const
+      const std::function<
+        std::vector<unsigned int>(const std::vector<unsigned int> &,
+                                  const std::vector<double> &)> &next_of,
+      std::vector<double>                                       &F,
+      ReducedSolution                                           &s) const
     {
       const unsigned int        n      = pairs.size();
       std::vector<unsigned int> active = first_active_set(torque, beta_guess);
       std::set<std::vector<unsigned int>> seen;
-      F.assign(n, 0.);
-      // Start from one force on every active contact that carries the
-      // torque (not T / (n l_i): a contact at the root has l_i ~ 0).
-      double active_arms = 0;
-      for (const unsigned int i : active)
-        active_arms += rigid_gap(i, beta_guess).second;
-      for (const unsigned int i : active)
-        F[i] = torque / active_arms;
+      F = starting_forces(active, torque, beta_guess);
       while (true)
         {
           AssertThrow(seen.insert(active).second,
@@ -282,6 +275,25 @@ namespace cycloid
                                          "the active set."));
         }
       return active;
+    }
+
+
+
+    std::vector<double>
+    ComplementaritySolver::starting_forces(
+      const std::vector<unsigned int> &active,
+      const double                     torque,
+      const double                     beta_guess) const
+    {
+      // One force on every active contact that carries the torque (not
+      // T / (n l_i): a contact at the root has l_i ~ 0).
+      std::vector<double> F(pairs.size(), 0.);
+      double              active_arms = 0;
+      for (const unsigned int i : active)
+        active_arms += rigid_gap(i, beta_guess).second;
+      for (const unsigned int i : active)
+        F[i] = torque / active_arms;
+      return F;
     }
 
 
@@ -336,7 +348,8 @@ namespace cycloid
         [&](const std::vector<unsigned int> &set, std::vector<double> &f) {
           return newton(set, torque, floor, f, s.rotation);
         },
-        [&](const std::vector<unsigned int> &set, const std::vector<double> &f) {
+        [&](const std::vector<unsigned int> &set,
+            const std::vector<double>       &f) {
           return next_active_set(set, f, s.rotation);
         },
         F,

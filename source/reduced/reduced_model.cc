@@ -297,8 +297,8 @@ namespace cycloid
       // first active set (its beta is smaller: it is stiffer). Bearings
       // without clearance leave the take-up to the pins: the rigid
       // supports' solve gives it at a third of the cost.
-      const auto          &b    = settings.stage.bearings;
-      analytic::LoadState  load =
+      const auto         &b = settings.stage.bearings;
+      analytic::LoadState load =
         b.needle() && b.radial_clearance == 0 ?
           model.solve_on_rigid_supports(pins, torque, beta_guess) :
           model.solve(pins, torque, beta_guess, psi);
@@ -326,17 +326,17 @@ namespace cycloid
         {
           // The disc's motion: its turn (the rotation on rigid supports)
           // and, on bearings, its translation.
-          const unsigned int   d = p.contact.disc;
-          const double         theta =
+          const unsigned int d = p.contact.disc;
+          const double       theta =
             s.motions.empty() ? s.rotation : s.motions[d].rotation;
-          const double closing =
-            s.motions.empty() ? 0. : p.contact.normal * s.motions[d].translation;
+          const double closing = s.motions.empty() ?
+                                   0. :
+                                   p.contact.normal * s.motions[d].translation;
           // A loaded pin acts at the point the turned disc touches it.
           if (p.force > 0)
             p.contact.arm = rigid_gap(p.contact)(theta).second;
-          p.approach = std::max(0.,
-                                closing + theta * p.contact.arm -
-                                  p.contact.clearance);
+          p.approach =
+            std::max(0., closing + theta * p.contact.arm - p.contact.clearance);
           load.reaction_torque += p.force * p.contact.arm * u::Nm_per_Nmm;
           if (p.force > 0)
             ++load.pins_in_contact;

@@ -55,13 +55,13 @@ namespace cycloid
         }
       for (unsigned int a = 0; a < m; ++a)
         {
-          const unsigned int   i     = active[a];
-          const unsigned int   d     = pairs[i].disc;
-          const unsigned int   row   = m + 3 * d;
-          const double         theta = q[d].rotation;
-          const auto           n     = pairs[i].normal;
-          const auto [gap, arm]      = rigid_gap(i, theta);
-          const double dl            = arm_slope(i, theta);
+          const unsigned int i     = active[a];
+          const unsigned int d     = pairs[i].disc;
+          const unsigned int row   = m + 3 * d;
+          const double       theta = q[d].rotation;
+          const auto         n     = pairs[i].normal;
+          const auto [gap, arm]    = rigid_gap(i, theta);
+          const double dl          = arm_slope(i, theta);
           // Gap: the rigid gap at theta, closed by n . t, opened by the
           // bodies' and the near field's give.
           r(a) = gap - n * q[d].translation + approach(i, F[i], floor);
@@ -177,17 +177,14 @@ namespace cycloid
       // loaded as they will be, not from rest.
       const std::vector<unsigned int> active =
         first_active_set(torque, beta_guess);
-      double active_arms = 0;
-      for (const unsigned int i : active)
-        active_arms += rigid_gap(i, beta_guess).second;
-      const unsigned int nd = supports->n_discs();
+      const std::vector<double> F = starting_forces(active, torque, beta_guess);
+      const unsigned int        nd = supports->n_discs();
       std::vector<std::array<double, 3>> load(nd, {{0., 0., 0.}});
       for (const unsigned int i : active)
         {
-          const double f = torque / active_arms;
-          load[pairs[i].disc][0] += f * pairs[i].normal[0];
-          load[pairs[i].disc][1] += f * pairs[i].normal[1];
-          load[pairs[i].disc][2] += f * rigid_gap(i, beta_guess).second;
+          load[pairs[i].disc][0] += F[i] * pairs[i].normal[0];
+          load[pairs[i].disc][1] += F[i] * pairs[i].normal[1];
+          load[pairs[i].disc][2] += F[i] * rigid_gap(i, beta_guess).second;
         }
       std::vector<support::DiscMotion> q(nd);
       for (unsigned int d = 0; d < nd; ++d)
@@ -234,8 +231,8 @@ namespace cycloid
         q.rotation = beta_guess;
       if (torque == 0 || n == 0)
         return s;
-      const double        floor         = force_floor(torque);
-      const double        bearing_floor = supports->stiffness_floor(torque);
+      const double floor         = force_floor(torque);
+      const double bearing_floor = supports->stiffness_floor(torque);
       s.motions = initial_motions(torque, beta_guess, bearing_floor);
       std::vector<double> F;
       const auto          active = active_set_loop(
@@ -246,7 +243,8 @@ namespace cycloid
           return supported_newton(
             set, torque, floor, bearing_floor, f, s.motions, s.rotation);
         },
-        [&](const std::vector<unsigned int> &set, const std::vector<double> &f) {
+        [&](const std::vector<unsigned int> &set,
+            const std::vector<double>       &f) {
           return next_supported_set(set, f, s.motions);
         },
         F,

@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/utilities.h>
 
@@ -104,16 +105,16 @@ namespace cycloid
       const unsigned int fit = static_cast<unsigned int>(std::floor(
         dealii::numbers::PI /
         std::asin(std::min(1., 0.5 * s.roller_diameter / s.pitch_radius))));
-      s.n_rollers = n_rollers > 0 ?
-                      n_rollers :
-                      static_cast<unsigned int>(std::floor(
-                        2. * dealii::numbers::PI * s.pitch_radius /
-                        (1.25 * s.roller_diameter)));
+      s.n_rollers            = n_rollers > 0 ?
+                                 n_rollers :
+                                 static_cast<unsigned int>(
+                        std::floor(2. * dealii::numbers::PI * s.pitch_radius /
+                                   (1.25 * s.roller_diameter)));
       AssertThrow(s.n_rollers <= fit && s.n_rollers >= 3,
                   dealii::ExcMessage(
                     "Crank bearings/Number of rollers = " +
-                    std::to_string(s.n_rollers) + ": " +
-                    std::to_string(fit) + " rollers of diameter " +
+                    std::to_string(s.n_rollers) + ": " + std::to_string(fit) +
+                    " rollers of diameter " +
                     dealii::Utilities::to_string(s.roller_diameter) +
                     " mm fit in a crank hole of radius " +
                     dealii::Utilities::to_string(hole_radius) +

@@ -35,7 +35,7 @@ namespace cycloid
                     "about it."));
       for (unsigned int d = 0; d < n_discs; ++d)
         {
-          const dealii::Point<2> c = geo.disc_centre(d, psi);
+          const dealii::Point<2>            c = geo.disc_centre(d, psi);
           std::vector<dealii::Tensor<1, 2>> a;
           for (unsigned int j = 0; j < n_cranks; ++j)
             a.push_back(geo.crank_hole_centre(d, j, psi) - c);
@@ -67,9 +67,8 @@ namespace cycloid
       for (unsigned int j = 0; j < arms[d].size(); ++j)
         {
           const dealii::Tensor<1, 2> w = turn(arms[d][j]);
-          const auto b = law.response(deflection(d, j, motion, beta),
-                                      cage[d],
-                                      floor);
+          const auto                 b =
+            law.response(deflection(d, j, motion, beta), cage[d], floor);
           // The roller forces pass through the hole's centre: moment
           // a x F = w . F.
           r.value[0] += b.force[0];

@@ -13,10 +13,10 @@ namespace cycloid
     namespace
     {
       /** Palmgren's constant [mm N^-0.9 mm^0.8] and exponents. */
-      constexpr double palmgren     = 3.84e-5;
-      constexpr double load_exp     = 0.9;
-      constexpr double length_exp   = 0.8;
-      constexpr double contacts     = 2.;
+      constexpr double palmgren   = 3.84e-5;
+      constexpr double load_exp   = 0.9;
+      constexpr double length_exp = 0.8;
+      constexpr double contacts   = 2.;
     } // namespace
 
 
@@ -66,9 +66,10 @@ namespace cycloid
       double e = 0;
       for (unsigned int k = 0; k < dims.n_rollers; ++k)
         {
-          const double phi = cage + 2. * dealii::numbers::PI * k / dims.n_rollers;
-          const double s   = -(d[0] * std::cos(phi) + d[1] * std::sin(phi)) -
-                           dims.clearance;
+          const double phi =
+            cage + 2. * dealii::numbers::PI * k / dims.n_rollers;
+          const double s =
+            -(d[0] * std::cos(phi) + d[1] * std::sin(phi)) - dims.clearance;
           e += roller_load(s, dims.roller_length) * std::max(s, 0.) /
                (1. / load_exp + 1.);
         }
@@ -82,12 +83,13 @@ namespace cycloid
                             const double                cage,
                             const double                floor) const
     {
-      Response             r;
-      std::vector<double>  stiffness(dims.n_rollers);
+      Response                          r;
+      std::vector<double>               stiffness(dims.n_rollers);
       std::vector<dealii::Tensor<1, 2>> direction(dims.n_rollers);
       for (unsigned int k = 0; k < dims.n_rollers; ++k)
         {
-          const double phi = cage + 2. * dealii::numbers::PI * k / dims.n_rollers;
+          const double phi =
+            cage + 2. * dealii::numbers::PI * k / dims.n_rollers;
           const dealii::Tensor<1, 2> u({std::cos(phi), std::sin(phi)});
           const double               s = -(d * u) - dims.clearance;
           const double               q = roller_load(s, dims.roller_length);

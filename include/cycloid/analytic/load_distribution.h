@@ -1,12 +1,12 @@
 #ifndef cycloid_analytic_load_distribution_h
 #define cycloid_analytic_load_distribution_h
 
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
 #include <cycloid/analytic/pair_stiffness.h>
 #include <cycloid/geometry/cycloid_geometry.h>
 #include <cycloid/support/crank_supports.h>
-
-#include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/vector.h>
 
 #include <array>
 #include <functional>
@@ -111,9 +111,9 @@ namespace cycloid
        * carries the torque. The bearings' clearance adds to the take-up.
        */
       LoadState
-      solve(const std::vector<PinLoad>    &pins,
-            const double                   torque,
-            const double                   beta_guess,
+      solve(const std::vector<PinLoad>   &pins,
+            const double                  torque,
+            const double                  beta_guess,
             const support::CrankSupports &supports) const;
 
       /**
@@ -129,8 +129,8 @@ namespace cycloid
        * largest rotation at which the discs, free in their bearings'
        * clearance, still carry no torque. */
       LoadState
-      zero_torque_limit(const std::vector<PinLoad>    &pins,
-                        const int                      side,
+      zero_torque_limit(const std::vector<PinLoad>   &pins,
+                        const int                     side,
                         const support::CrankSupports &supports) const;
 
     private:

@@ -2,11 +2,10 @@
 #define cycloid_reduced_load_distribution_h
 
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
 
 #include <cycloid/reduced/local_contact.h>
 #include <cycloid/support/crank_supports.h>
-
-#include <deal.II/lac/vector.h>
 
 #include <functional>
 #include <memory>
@@ -116,16 +115,23 @@ namespace cycloid
        * a contact entering the set starts from. */
       std::vector<unsigned int>
       active_set_loop(
-        const double                                            torque,
-        const double                                            beta_guess,
-        const double                                            floor,
+        const double                                              torque,
+        const double                                              beta_guess,
+        const double                                              floor,
         const std::function<unsigned int(const std::vector<unsigned int> &,
                                          std::vector<double> &)> &newton_on,
-        const std::function<std::vector<unsigned int>(
-          const std::vector<unsigned int> &,
-          const std::vector<double> &)>                         &next_of,
-        std::vector<double>                                    &F,
-        ReducedSolution                                        &s) const;
+        const std::function<
+          std::vector<unsigned int>(const std::vector<unsigned int> &,
+                                    const std::vector<double> &)> &next_of,
+        std::vector<double>                                       &F,
+        ReducedSolution                                           &s) const;
+
+      /** The forces the first set @p active (rotation @p beta_guess
+       * [rad]) starts from: T over the summed arms on each [N]. */
+      std::vector<double>
+      starting_forces(const std::vector<unsigned int> &active,
+                      const double                     torque,
+                      const double                     beta_guess) const;
 
       /** @p s's forces, own compliances and bodies' work from the solved
        * forces @p F. */
@@ -167,13 +173,13 @@ namespace cycloid
 
       /** Newton on crank bearings, like newton(). */
       unsigned int
-      supported_newton(const std::vector<unsigned int> &active,
-                       const double                     torque,
-                       const double                     floor,
-                       const double                     bearing_floor,
-                       std::vector<double>             &F,
+      supported_newton(const std::vector<unsigned int>  &active,
+                       const double                      torque,
+                       const double                      floor,
+                       const double                      bearing_floor,
+                       std::vector<double>              &F,
                        std::vector<support::DiscMotion> &q,
-                       double                          &beta) const;
+                       double                           &beta) const;
 
       /** The set after @p active with forces @p F: the active contacts
        * that still push, and the open ones whose gap (@p rigid_gap_of(i),
@@ -242,8 +248,8 @@ namespace cycloid
       const std::vector<ContactPair>   pairs;
       /** The crank bearings (none: rigid supports). */
       std::unique_ptr<support::CrankSupports> supports;
-      const double                     tolerance;
-      const unsigned int               max_iterations;
+      const double                            tolerance;
+      const unsigned int                      max_iterations;
     };
   } // namespace reduced
 } // namespace cycloid
